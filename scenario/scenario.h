@@ -1,0 +1,144 @@
+#pragma once
+// The scenario: everything one run needs, as plain structs with units. Filled by
+// LoadScenario (scenario_loader.h), which validates every key; defaults below are the values a
+// key takes when the YAML leaves it out. Key names in comments are the YAML keys (DESIGN.md).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace viqu {
+
+using Vec2 = std::array<double, 2>;
+
+struct GaitConfig {                  // robot.gait
+  std::string type = "trot";         // trot | walk
+  double frequency_hz = 3.0;         // gait cycles per second (Hz)
+  double duty = 0.6;                 // stance fraction of a cycle, (0, 1)
+  double step_height_m = 0.015;      // swing apex above the stance height (m)
+};
+
+// One entry of a velocity schedule: from t_s on, walk with this command (until the next entry).
+struct VelocityCommand {
+  double t_s = 0;                    // start time (s)
+  double forward_mps = 0;            // forward speed (m/s)
+  double yaw_rate_dps = 0;           // yaw rate (deg/s), positive turns left
+};
+
+struct CommandConfig {               // robot.command
+  std::vector<Vec2> waypoints;       // world xy (m); empty means the velocity schedule is used
+  double speed_mps = 0.12;           // cruise speed along waypoints (m/s)
+  std::string follow = "ground_truth";  // ground_truth | estimate
+  bool loop = false;                 // start over at the first waypoint after the last
+  std::vector<VelocityCommand> velocity;  // robot.command.velocity: [{t_s, forward_mps, yaw_rate_dps}]
+};
+
+struct StartConfig {                 // robot.start
+  Vec2 xy{0, 0};                     // trunk centre in world (m)
+  double yaw_deg = 0;                // heading, 0 = world +x (deg)
+};
+
+struct RobotConfig {                 // robot
+  std::string model;                 // MJCF path (absolute after loading); URDF is beside it, same stem
+  StartConfig start;
+  GaitConfig gait;
+  CommandConfig command;
+  bool allow_fall = false;           // robot.allow_fall: if false, a fall ends the run with exit 1
+};
+
+struct CameraConfig {                // sensors.camera
+  double rate_hz = 20;               // (Hz)
+  int width = 640, height = 480;     // (px)
+  double fovy_deg = 70;              // vertical field of view (deg)
+  double baseline_m = 0.04;          // stereo baseline (m)
+  double noise_std = 2.0;            // Gaussian pixel noise, std in 8-bit grey levels
+  bool depth = true;                 // render metric depth for the left camera
+  bool segmentation = true;          // render the instance segmentation for the left camera
+};
+
+struct ImuConfig {                   // sensors.imu
+  double rate_hz = 200;              // (Hz)
+  double accel_noise = 0.02;         // white noise std per sample (m/s^2)
+  double gyro_noise = 0.002;         // white noise std per sample (rad/s)
+  double accel_bias_walk = 0.001;    // bias random walk (m/s^2/sqrt(s))
+  double gyro_bias_walk = 0.0001;    // bias random walk (rad/s/sqrt(s))
+};
+
+struct JointsConfig {                // sensors.joints
+  double rate_hz = 200;              // (Hz)
+  double noise_rad = 0.001;          // white noise std (rad)
+  double resolution_rad = 0.0015;    // encoder quantisation step (rad); 0 = none (~12 bit)
+};
+
+struct SegmentationConfig {          // sensors.segmentation
+  double miss_rate = 0.05;           // probability that an instance is missing from a frame
+  int dilate_px = 2;                 // mask dilation (px), imitates a detector's loose masks
+  int latency_frames = 0;            // masks arrive this many camera frames late
+};
+
+struct SensorsConfig {
+  CameraConfig camera;
+  ImuConfig imu;
+  JointsConfig joints;
+  SegmentationConfig segmentation;
+};
+
+struct ObstacleConfig {              // obstacles[i]
+  std::string name;                  // unique
+  std::string category = "box";      // person | box | ball | furniture
+  std::vector<double> size_m;        // box: [x, y, z] full size; ball: [diameter]; person: [height]
+  std::vector<Vec2> path;            // world xy waypoints (m); one point = never moves
+  double speed_mps = 0.5;            // speed along the path (m/s)
+  double start_s = 0;                // stands still at path[0] until then (s)
+  double pause_s = 0;                // waits this long at every waypoint (s)
+  std::string loop = "none";         // none | loop | pingpong
+  double yaw_deg = 0;                // heading while standing before the start (deg)
+};
+
+struct FrictionPatch {               // terrain.patches[i]
+  Vec2 center{0, 0};                 // (m)
+  Vec2 size{0.5, 0.5};               // full size x, y (m)
+  double friction = 0.05;            // sliding friction coefficient
+};
+
+struct Slope {                       // terrain.slopes[i]: a ramp rising along its yaw direction
+  Vec2 center{0, 0};                 // centre of the ramp (m)
+  Vec2 size{1.0, 0.6};               // length along the slope, width (m)
+  double angle_deg = 8;              // inclination (deg)
+  double yaw_deg = 0;                // direction of ascent in world (deg)
+};
+
+struct TerrainConfig {
+  double friction = 1.0;             // terrain.friction: floor friction elsewhere
+  std::vector<FrictionPatch> patches;
+  std::vector<Slope> slopes;
+};
+
+struct DynamicConfig {               // slam.dynamic (paper eqs. 1-4)
+  std::string method = "adaptive";
+  double alpha = 1.0, beta = 1.0, gamma = 0.5, th_d = 0.1;
+  double window_s = 6;
+  int window_n = 10;
+};
+
+struct SlamConfig {                  // slam
+  std::string mode = "full";         // visual | visual_dynamic | full
+  std::string config;                // settings file; empty = slam/config/default.yaml
+  DynamicConfig dynamic;
+};
+
+struct Scenario {
+  std::string source_file;           // the YAML the scenario came from (absolute)
+  std::string name;
+  uint64_t seed = 0;
+  double duration_s = 10;            // simulated time (s)
+  double physics_dt_s = 0.001;       // physics.timestep_s (s)
+  std::string world;                 // MJCF of the world (absolute after loading)
+  RobotConfig robot;
+  SensorsConfig sensors;
+  std::vector<ObstacleConfig> obstacles;
+  TerrainConfig terrain;
+  SlamConfig slam;
+};
+
+}  // namespace viqu

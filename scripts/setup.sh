@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian packages viqu needs (only those missing), then configures and builds
+# into ./build (Release). Safe to run repeatedly. Needs root (or sudo) only when something is missing.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+
+packages=(
+  build-essential cmake pkg-config ccache
+  libmujoco-dev libeigen3-dev libopencv-dev liburdfdom-dev libceres-dev libyaml-cpp-dev
+  libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
+  googletest libgtest-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "viqu setup: installing ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+jobs=${VIQU_JOBS:-$(nproc)}
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$root/build" -j"$jobs"
