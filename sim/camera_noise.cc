@@ -1,0 +1,38 @@
+#include "sim/camera_noise.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <opencv2/core.hpp>
+
+#include "common/errors.h"
+
+namespace viqu::sim {
+
+void AddPixelNoise(cv::Mat* rgb, double std, std::mt19937_64* rng) {
+  if (rgb == nullptr || rng == nullptr) {
+    throw viqu::InputError("AddPixelNoise: null image or generator");
+  }
+  if (!(std >= 0.0) || !std::isfinite(std)) {
+    std::ostringstream msg;
+    msg << "AddPixelNoise: std must be finite and >= 0, got " << std;
+    throw viqu::InputError(msg.str());
+  }
+  if (rgb->empty() || std == 0.0) return;
+  if (rgb->depth() != CV_8U) {
+    std::ostringstream msg;
+    msg << "AddPixelNoise: expected an 8-bit image, got OpenCV type " << rgb->type();
+    throw viqu::InputError(msg.str());
+  }
+  // One draw from our generator seeds OpenCV's; cv::RNG(0) would silently become a fixed
+  // default state, so map 0 to another value.
+  uint64_t state = (*rng)();
+  if (state == 0) state = 0x9E3779B97F4A7C15ull;
+  cv::RNG cv_rng(state);
+  // int16 noise: rounded to whole grey levels by fill(); cv::add saturates the sum to [0, 255].
+  cv::Mat noise(rgb->size(), CV_MAKETYPE(CV_16S, rgb->channels()));
+  cv_rng.fill(noise, cv::RNG::NORMAL, 0.0, std);
+  cv::add(*rgb, noise, *rgb, cv::noArray(), CV_8U);
+}
+
+}  // namespace viqu::sim
