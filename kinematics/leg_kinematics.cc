@@ -1,0 +1,150 @@
+#include "kinematics/leg_kinematics.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <urdf_parser/urdf_parser.h>
+
+#include "common/errors.h"
+
+namespace viqu::kin {
+namespace {
+
+constexpr double kGeomTol = 1e-9;  // tolerance for "is along the axis" checks (m or unitless)
+
+Eigen::Isometry3d ToIsometry(const urdf::Pose& p) {
+  double qx, qy, qz, qw;
+  p.rotation.getQuaternion(qx, qy, qz, qw);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  return T;
+}
+
+Eigen::Isometry3d RotationAbout(const Eigen::Vector3d& axis, double angle) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+  return T;
+}
+
+urdf::JointConstSharedPtr JointOrThrow(const urdf::ModelInterface& model, const std::string& name,
+                                       const std::string& what) {
+  auto j = model.getJoint(name);
+  if (!j) throw InputError(what + ": URDF has no joint '" + name + "'");
+  return j;
+}
+
+// A sagittal two-link leg: knee and foot offsets straight down, axes along +-y, no hip rotation.
+void CheckPlanarLeg(const LegChain& c, const std::string& leg, const std::string& what) {
+  const auto bad = [&](const std::string& why) {
+    throw InputError(what + ": leg " + leg + " is not a planar two-link leg (paper eq. 6): " + why);
+  };
+  if (!c.T_trunk_hip.linear().isIdentity(kGeomTol)) bad("hip joint origin is rotated");
+  if (std::abs(std::abs(c.hip_axis.y()) - 1) > kGeomTol) bad("hip axis is not along y");
+  if (!c.knee_axis.isApprox(c.hip_axis, kGeomTol)) bad("knee axis differs from hip axis");
+  if (!c.T_thigh_knee.linear().isIdentity(kGeomTol) || !c.T_shank_foot.linear().isIdentity(kGeomTol))
+    bad("knee or foot origin is rotated");
+  const Eigen::Vector3d k = c.T_thigh_knee.translation(), f = c.T_shank_foot.translation();
+  if (std::abs(k.x()) > kGeomTol || std::abs(k.y()) > kGeomTol || k.z() >= 0) bad("knee not below hip");
+  if (std::abs(f.x()) > kGeomTol || std::abs(f.y()) > kGeomTol || f.z() >= 0) bad("foot not below knee");
+}
+
+}  // namespace
+
+const char* LegName(Leg leg) {
+  static const char* kNames[] = {"FL", "FR", "BL", "BR"};
+  return kNames[static_cast<int>(leg)];
+}
+
+LegKinematics LegKinematics::FromUrdfFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read URDF file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return FromUrdfString(ss.str(), path);
+}
+
+LegKinematics LegKinematics::FromUrdfString(const std::string& xml, const std::string& what) {
+  urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
+  if (!model) throw InputError(what + ": cannot parse URDF");
+  LegKinematics k;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const std::string leg = LegName(static_cast<Leg>(i));
+    const auto hip = JointOrThrow(*model, leg + "_hip", what);
+    const auto knee = JointOrThrow(*model, leg + "_knee", what);
+    const auto foot = JointOrThrow(*model, leg + "_foot_fixed", what);
+    if (hip->parent_link_name != "trunk" || knee->parent_link_name != hip->child_link_name ||
+        foot->parent_link_name != knee->child_link_name) {
+      throw InputError(what + ": leg " + leg + " is not the chain trunk -> hip -> knee -> foot");
+    }
+    LegChain& c = k.legs_[i];
+    c.T_trunk_hip = ToIsometry(hip->parent_to_joint_origin_transform);
+    c.hip_axis = Eigen::Vector3d(hip->axis.x, hip->axis.y, hip->axis.z).normalized();
+    c.T_thigh_knee = ToIsometry(knee->parent_to_joint_origin_transform);
+    c.knee_axis = Eigen::Vector3d(knee->axis.x, knee->axis.y, knee->axis.z).normalized();
+    c.T_shank_foot = ToIsometry(foot->parent_to_joint_origin_transform);
+    if (!hip->limits || !knee->limits) throw InputError(what + ": leg " + leg + " joints need <limit>");
+    c.hip_lower = hip->limits->lower;
+    c.hip_upper = hip->limits->upper;
+    c.knee_lower = knee->limits->lower;
+    c.knee_upper = knee->limits->upper;
+    CheckPlanarLeg(c, leg, what);
+    const double l1 = -c.T_thigh_knee.translation().z(), l2 = -c.T_shank_foot.translation().z();
+    if (i == 0) {
+      k.l1_ = l1;
+      k.l2_ = l2;
+    } else if (std::abs(l1 - k.l1_) > kGeomTol || std::abs(l2 - k.l2_) > kGeomTol) {
+      throw InputError(what + ": leg " + leg + " has different link lengths than FL");
+    }
+  }
+  for (const auto& [name, link] : model->links_) {
+    if (link->inertial) k.total_mass_ += link->inertial->mass;
+  }
+  return k;
+}
+
+Eigen::Vector3d LegKinematics::FootInTrunk(Leg leg, double theta1, double theta2) const {
+  const LegChain& c = chain(leg);
+  const Eigen::Isometry3d T = c.T_trunk_hip * RotationAbout(c.hip_axis, theta1) * c.T_thigh_knee *
+                              RotationAbout(c.knee_axis, theta2) * c.T_shank_foot;
+  return T.translation();
+}
+
+Eigen::Matrix<double, 3, 2> LegKinematics::FootJacobian(Leg leg, double theta1, double theta2) const {
+  const LegChain& c = chain(leg);
+  const Eigen::Isometry3d T_trunk_thigh = c.T_trunk_hip * RotationAbout(c.hip_axis, theta1);
+  const Eigen::Isometry3d T_trunk_shank = T_trunk_thigh * c.T_thigh_knee * RotationAbout(c.knee_axis, theta2);
+  const Eigen::Vector3d p_foot = (T_trunk_shank * c.T_shank_foot).translation();
+  Eigen::Matrix<double, 3, 2> J;
+  const Eigen::Vector3d a1 = T_trunk_thigh.linear() * c.hip_axis;
+  const Eigen::Vector3d a2 = T_trunk_shank.linear() * c.knee_axis;
+  J.col(0) = a1.cross(p_foot - T_trunk_thigh.translation());
+  J.col(1) = a2.cross(p_foot - T_trunk_shank.translation());
+  return J;
+}
+
+bool LegKinematics::Inverse(Leg leg, const Eigen::Vector3d& p_trunk_foot, double* theta1,
+                            double* theta2) const {
+  const LegChain& c = chain(leg);
+  // Sagittal coordinates relative to the hip: forward x and downward depth. With the axis along
+  // -y a positive angle swings the link forward: foot = (l1 s1 + l2 s12, -(l1 c1 + l2 c12)).
+  const double sign = -c.hip_axis.y();  // +1 for axis -y, -1 for axis +y
+  const Eigen::Vector3d d = p_trunk_foot - c.T_trunk_hip.translation();
+  const double x = d.x(), depth = -d.z();
+  const double r_max = l1_ + l2_, r_min = std::abs(l1_ - l2_);
+  double r = std::hypot(x, depth);
+  bool ok = true;
+  if (r > r_max) { r = r_max; ok = false; }
+  if (r < r_min + 1e-9) { r = r_min + 1e-9; ok = false; }
+  const double cos2 = std::clamp((r * r - l1_ * l1_ - l2_ * l2_) / (2 * l1_ * l2_), -1.0, 1.0);
+  const double q2 = std::acos(cos2);  // knee backward: theta2 >= 0
+  const double q1 = std::atan2(x, depth) - std::atan2(l2_ * std::sin(q2), l1_ + l2_ * std::cos(q2));
+  double t1 = sign * q1, t2 = sign * q2;
+  if (t1 < c.hip_lower || t1 > c.hip_upper || t2 < c.knee_lower || t2 > c.knee_upper) ok = false;
+  *theta1 = std::clamp(t1, c.hip_lower, c.hip_upper);
+  *theta2 = std::clamp(t2, c.knee_lower, c.knee_upper);
+  return ok;
+}
+
+}  // namespace viqu::kin

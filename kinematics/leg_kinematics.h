@@ -1,0 +1,59 @@
+#pragma once
+// Forward and inverse kinematics of the rat's legs, read from the URDF (the kinematic truth).
+// One implementation serves the gait controller (inverse) and the leg odometry (forward).
+#include <array>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "slam/measurements/joint_state.h"
+
+namespace viqu::kin {
+
+// One leg's chain, every transform in the parent's frame, read from the URDF.
+struct LegChain {
+  Eigen::Isometry3d T_trunk_hip = Eigen::Isometry3d::Identity();    // hip joint origin in trunk
+  Eigen::Vector3d hip_axis = -Eigen::Vector3d::UnitY();              // unit axis, hip joint frame
+  Eigen::Isometry3d T_thigh_knee = Eigen::Isometry3d::Identity();   // knee joint origin in thigh
+  Eigen::Vector3d knee_axis = -Eigen::Vector3d::UnitY();             // unit axis, knee joint frame
+  Eigen::Isometry3d T_shank_foot = Eigen::Isometry3d::Identity();   // foot centre in shank
+  double hip_lower = 0, hip_upper = 0;    // joint limits (rad)
+  double knee_lower = 0, knee_upper = 0;  // joint limits (rad)
+};
+
+class LegKinematics {
+ public:
+  // Reads the URDF; throws viqu::InputError naming the file when it cannot be parsed, a leg
+  // joint is missing (FL_hip, FL_knee, FL_foot_fixed, ...), or the legs are not the planar
+  // two-link legs of paper eq. 6 (parallel pitch axes, links along -z at zero angles).
+  static LegKinematics FromUrdfFile(const std::string& path);
+  static LegKinematics FromUrdfString(const std::string& xml, const std::string& what);
+
+  // Foot centre in the trunk frame for joint angles (theta1 hip, theta2 knee) (m, rad).
+  Eigen::Vector3d FootInTrunk(Leg leg, double theta1, double theta2) const;
+
+  // d(FootInTrunk)/d(theta1, theta2), 3x2.
+  Eigen::Matrix<double, 3, 2> FootJacobian(Leg leg, double theta1, double theta2) const;
+
+  // Joint angles that put the foot centre at p_trunk_foot (its component along the pitch axis is
+  // ignored: a sagittal leg cannot move its foot sideways). Picks the knee-backward solution
+  // (theta2 > 0). Returns false, with the nearest reachable angles, if the point is out of reach
+  // or outside the joint limits.
+  bool Inverse(Leg leg, const Eigen::Vector3d& p_trunk_foot, double* theta1, double* theta2) const;
+
+  const LegChain& chain(Leg leg) const { return legs_[static_cast<int>(leg)]; }
+  double thigh_length() const { return l1_; }  // l1 (m)
+  double shank_length() const { return l2_; }  // l2 (m)
+  double total_mass() const { return total_mass_; }  // sum of all URDF link masses (kg)
+
+ private:
+  std::array<LegChain, kNumLegs> legs_;
+  double l1_ = 0, l2_ = 0;
+  double total_mass_ = 0;
+};
+
+// "FL", "FR", "BL", "BR".
+const char* LegName(Leg leg);
+
+}  // namespace viqu::kin
