@@ -1,0 +1,263 @@
+#include "common/yaml_strict.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/errors.h"
+
+namespace viqu {
+namespace {
+
+// A quoted scalar ("0.6", '1') carries the non-specific tag "!": it is a string, not a number.
+bool IsPlainScalar(const YAML::Node& node) { return node.IsScalar() && node.Tag() != "!"; }
+
+[[noreturn]] void FailExpected(const YamlSource& src, const YAML::Node& node,
+                               const std::string& key_path, const std::string& what) {
+  src.Fail(key_path, node,
+           "key '" + key_path + "' expected " + what + ", got " + DescribeYamlValue(node));
+}
+
+// Parses the whole of `text` as a finite double.
+bool ParseDouble(const std::string& text, double* out) {
+  if (text.empty()) return false;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  if (end != begin + text.size() || errno == ERANGE || !std::isfinite(v)) return false;
+  *out = v;
+  return true;
+}
+
+// Parses the whole of `text` as a decimal integer (optional sign).
+bool ParseInteger(const std::string& text, int64_t* out) {
+  if (text.empty()) return false;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(begin, &end, 10);
+  if (end != begin + text.size() || errno == ERANGE) return false;
+  *out = static_cast<int64_t>(v);
+  return true;
+}
+
+// Splits "a.b.0.c" into its components; empty components are an error (returns false).
+bool SplitKeyPath(const std::string& path, std::vector<std::string>* parts) {
+  parts->clear();
+  size_t start = 0;
+  while (true) {
+    const size_t dot = path.find('.', start);
+    const std::string part = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (part.empty()) return false;
+    parts->push_back(part);
+    if (dot == std::string::npos) return true;
+    start = dot + 1;
+  }
+}
+
+// A list index: only digits.
+bool ParseIndex(const std::string& text, size_t* index) {
+  if (text.empty() || text.size() > 9) return false;
+  for (char c : text) {
+    if (c < '0' || c > '9') return false;
+  }
+  *index = static_cast<size_t>(std::stoul(text));
+  return true;
+}
+
+YAML::Node ParseText(const std::string& text, const std::string& name) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    std::string where = name;
+    if (!e.mark.is_null()) {
+      where += ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1);
+    }
+    throw InputError(where + ": YAML syntax error: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw InputError(name + ": cannot parse YAML: " + e.what());
+  }
+}
+
+}  // namespace
+
+YAML::Node LoadYamlFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": file not found");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": read error");
+  return ParseText(text.str(), path);
+}
+
+YAML::Node LoadYamlText(const std::string& text, const std::string& name) {
+  return ParseText(text, name);
+}
+
+void ApplyYamlOverride(YAML::Node* root, const std::string& assignment, YamlSource* src) {
+  const std::string where = "--set " + assignment;
+  const size_t eq = assignment.find('=');
+  if (eq == std::string::npos) throw InputError(where + ": expected key.path=value");
+  const std::string key_path = assignment.substr(0, eq);
+  std::vector<std::string> parts;
+  if (!SplitKeyPath(key_path, &parts)) {
+    throw InputError(where + ": '" + key_path + "' is not a key path like a.b.c");
+  }
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    throw InputError(where + ": the value is not valid YAML: " + e.msg);
+  }
+  if (!root->IsDefined() || root->IsNull()) *root = YAML::Node(YAML::NodeType::Map);
+
+  // Walk down with reset() (plain assignment between nodes would overwrite the node's content).
+  YAML::Node cur;
+  cur.reset(*root);
+  std::string walked;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    const bool last = i + 1 == parts.size();
+    const std::string here = JoinKeyPath(walked, part);
+    YAML::Node next;
+    if (cur.IsMap()) {
+      if (last) {
+        cur[part] = value;
+        break;
+      }
+      const YAML::Node& const_cur = cur;
+      YAML::Node child = const_cur[part];
+      if (!child.IsDefined() || child.IsNull()) cur[part] = YAML::Node(YAML::NodeType::Map);
+      next.reset(cur[part]);
+    } else if (cur.IsSequence()) {
+      size_t index = 0;
+      if (!ParseIndex(part, &index)) {
+        throw InputError(where + ": '" + walked + "' is a list; '" + part + "' is not an index");
+      }
+      if (index >= cur.size()) {
+        throw InputError(where + ": index " + part + " is out of range, '" + walked + "' has " +
+                         std::to_string(cur.size()) + " elements");
+      }
+      if (last) {
+        cur[index] = value;
+        break;
+      }
+      next.reset(cur[index]);
+    } else {
+      throw InputError(where + ": '" + walked + "' is a single value, it has no key '" + part + "'");
+    }
+    cur.reset(next);
+    walked = here;
+  }
+  src->AddOverride(key_path, assignment);
+}
+
+std::string DescribeYamlValue(const YAML::Node& node) {
+  if (!node.IsDefined()) return "nothing";
+  switch (node.Type()) {
+    case YAML::NodeType::Null: return "nothing (null)";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a map";
+    case YAML::NodeType::Scalar: {
+      std::string text = node.Scalar();
+      if (text.size() > 60) text = text.substr(0, 57) + "...";
+      return IsPlainScalar(node) ? "'" + text + "'" : "'\"" + text + "\"' (a quoted string)";
+    }
+    default: return "nothing";
+  }
+}
+
+double ReadYamlNumber(const YamlSource& src, const YAML::Node& node, const std::string& key_path,
+                      const NumberRange& range) {
+  double v = 0;
+  if (!IsPlainScalar(node) || !ParseDouble(node.Scalar(), &v) || !range.Contains(v)) {
+    FailExpected(src, node, key_path, range.Describe("a number"));
+  }
+  return v;
+}
+
+int64_t ReadYamlInteger(const YamlSource& src, const YAML::Node& node, const std::string& key_path,
+                        const NumberRange& range) {
+  int64_t v = 0;
+  if (!IsPlainScalar(node) || !ParseInteger(node.Scalar(), &v) ||
+      !range.Contains(static_cast<double>(v))) {
+    FailExpected(src, node, key_path, range.Describe("an integer"));
+  }
+  return v;
+}
+
+uint64_t ReadYamlUnsigned(const YamlSource& src, const YAML::Node& node, const std::string& key_path) {
+  const std::string what = "an integer >= 0";
+  if (!IsPlainScalar(node)) FailExpected(src, node, key_path, what);
+  const std::string& text = node.Scalar();
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    FailExpected(src, node, key_path, what);
+  }
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+  if (errno == ERANGE) FailExpected(src, node, key_path, what + " below 2^64");
+  return static_cast<uint64_t>(v);
+}
+
+bool ReadYamlBool(const YamlSource& src, const YAML::Node& node, const std::string& key_path) {
+  if (IsPlainScalar(node)) {
+    const std::string& t = node.Scalar();
+    if (t == "true" || t == "True" || t == "TRUE") return true;
+    if (t == "false" || t == "False" || t == "FALSE") return false;
+  }
+  FailExpected(src, node, key_path, "true or false");
+}
+
+std::string ReadYamlString(const YamlSource& src, const YAML::Node& node, const std::string& key_path,
+                           bool allow_empty) {
+  if (!node.IsScalar() || (!allow_empty && node.Scalar().empty())) {
+    FailExpected(src, node, key_path, allow_empty ? "a string" : "a non-empty string");
+  }
+  return node.Scalar();
+}
+
+std::string ReadYamlChoice(const YamlSource& src, const YAML::Node& node, const std::string& key_path,
+                           const std::vector<std::string>& choices) {
+  std::string what = "one of ";
+  for (size_t i = 0; i < choices.size(); ++i) what += (i ? ", " : "") + choices[i];
+  if (node.IsScalar()) {
+    for (const std::string& c : choices) {
+      if (node.Scalar() == c) return c;
+    }
+  }
+  FailExpected(src, node, key_path, what);
+}
+
+std::vector<double> ReadYamlNumberList(const YamlSource& src, const YAML::Node& node,
+                                       const std::string& key_path, size_t size,
+                                       const NumberRange& range, size_t min_size) {
+  std::string what;
+  if (size > 0) {
+    what = "a list of " + std::to_string(size) + " numbers";
+  } else if (min_size > 0) {
+    what = "a list of at least " + std::to_string(min_size) + " numbers";
+  } else {
+    what = "a list of numbers";
+  }
+  if (!node.IsSequence() || (size > 0 && node.size() != size) || node.size() < min_size) {
+    FailExpected(src, node, key_path, what);
+  }
+  std::vector<double> out;
+  out.reserve(node.size());
+  for (size_t i = 0; i < node.size(); ++i) {
+    const YAML::Node& const_node = node;
+    out.push_back(ReadYamlNumber(src, const_node[i], JoinKeyPath(key_path, std::to_string(i)), range));
+  }
+  return out;
+}
+
+}  // namespace viqu

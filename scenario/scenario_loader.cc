@@ -1,0 +1,284 @@
+#include "scenario/scenario_loader.h"
+
+#include <filesystem>
+#include <set>
+
+#include "common/yaml_strict.h"
+
+namespace viqu {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kGaitTypes = {"trot", "walk"};
+const std::vector<std::string> kFollowModes = {"ground_truth", "estimate"};
+const std::vector<std::string> kCategories = {"person", "box", "ball", "furniture"};
+const std::vector<std::string> kLoopModes = {"none", "loop", "pingpong"};
+const std::vector<std::string> kSlamModes = {"visual", "visual_dynamic", "full"};
+const std::vector<std::string> kDynamicMethods = {"adaptive", "paper"};
+
+// Names that end up in file and MuJoCo body names: letters, digits, '_', '-', '.'.
+bool IsSafeName(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+void ReadSafeName(YamlMapReader* m, const std::string& key, std::string* out) {
+  if (!m->String(key, out)) return;
+  if (!IsSafeName(*out)) {
+    m->source().Fail(m->KeyPath(key), m->Get(key),
+                     "key '" + m->KeyPath(key) + "' expected a name of letters, digits, '_', '-' or '.', got '" +
+                         *out + "'");
+  }
+}
+
+// A path relative to the scenario file's folder, made absolute; the file must exist.
+void ReadFilePath(YamlMapReader* m, const std::string& key, const fs::path& base_dir, std::string* out) {
+  std::string text;
+  if (!m->String(key, &text)) return;
+  const fs::path resolved = (fs::path(text).is_absolute() ? fs::path(text) : base_dir / text).lexically_normal();
+  std::error_code ec;
+  if (!fs::is_regular_file(resolved, ec)) {
+    m->source().Fail(m->KeyPath(key), m->Get(key),
+                     "key '" + m->KeyPath(key) + "': file not found: " + resolved.string());
+  }
+  *out = resolved.string();
+}
+
+bool ReadVec2(YamlMapReader* m, const std::string& key, Vec2* out,
+              const NumberRange& range = NumberRange::Any()) {
+  std::vector<double> v;
+  if (!m->NumberList(key, &v, 2, range)) return false;
+  *out = {v[0], v[1]};
+  return true;
+}
+
+// A list of [x, y] points.
+std::vector<Vec2> ReadPointList(const YamlSource& src, const YAML::Node& list, const std::string& key_path) {
+  std::vector<Vec2> points;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node& const_list = list;
+    const std::vector<double> p =
+        ReadYamlNumberList(src, const_list[i], JoinKeyPath(key_path, std::to_string(i)), 2);
+    points.push_back({p[0], p[1]});
+  }
+  return points;
+}
+
+YAML::Node Element(const YAML::Node& list, size_t i) {
+  const YAML::Node& const_list = list;
+  return const_list[i];
+}
+
+void ReadGait(YamlMapReader m, GaitConfig* g) {
+  m.Choice("type", &g->type, kGaitTypes);
+  m.Number("frequency_hz", &g->frequency_hz, NumberRange::OpenClosed(0, 20));
+  m.Number("duty", &g->duty, NumberRange::Open(0, 1));
+  m.Number("step_height_m", &g->step_height_m, NumberRange::Closed(0, 0.1));
+  m.RejectUnknownKeys();
+}
+
+void ReadCommand(YamlMapReader m, CommandConfig* c) {
+  const YAML::Node waypoints = m.List("waypoints");
+  c->waypoints = ReadPointList(m.source(), waypoints, m.KeyPath("waypoints"));
+  m.Number("speed_mps", &c->speed_mps, NumberRange::OpenClosed(0, 5));
+  m.Choice("follow", &c->follow, kFollowModes);
+  m.Bool("loop", &c->loop);
+  const YAML::Node velocity = m.List("velocity");
+  c->velocity.clear();
+  for (size_t i = 0; i < velocity.size(); ++i) {
+    const YAML::Node item = Element(velocity, i);
+    YamlMapReader e(m.source(), item, JoinKeyPath(m.KeyPath("velocity"), std::to_string(i)), item);
+    VelocityCommand v;
+    NumberRange t_range = NumberRange::NonNegative();
+    if (!c->velocity.empty()) t_range = {c->velocity.back().t_s, t_range.hi, true, false};
+    e.Require("t_s");
+    e.Number("t_s", &v.t_s, t_range);
+    e.Number("forward_mps", &v.forward_mps, NumberRange::Closed(-5, 5));
+    e.Number("yaw_rate_dps", &v.yaw_rate_dps, NumberRange::Closed(-720, 720));
+    e.RejectUnknownKeys();
+    c->velocity.push_back(v);
+  }
+  if (!c->waypoints.empty() && !c->velocity.empty()) {
+    m.source().Fail(m.KeyPath("velocity"), velocity,
+                    "key '" + m.KeyPath("velocity") + "': give either waypoints or a velocity schedule, not both");
+  }
+  m.RejectUnknownKeys();
+}
+
+void ReadRobot(YamlMapReader m, const fs::path& base_dir, RobotConfig* r) {
+  m.Require("model");
+  ReadFilePath(&m, "model", base_dir, &r->model);
+  const fs::path urdf = fs::path(r->model).replace_extension(".urdf");
+  std::error_code ec;
+  if (!fs::is_regular_file(urdf, ec)) {
+    m.source().Fail(m.KeyPath("model"), m.Get("model"),
+                    "key '" + m.KeyPath("model") + "': the robot's URDF is missing beside its MJCF: " +
+                        urdf.string());
+  }
+  YamlMapReader start = m.Map("start");
+  ReadVec2(&start, "xy", &r->start.xy);
+  start.Number("yaw_deg", &r->start.yaw_deg, NumberRange::Closed(-360, 360));
+  start.RejectUnknownKeys();
+  ReadGait(m.Map("gait"), &r->gait);
+  ReadCommand(m.Map("command"), &r->command);
+  m.Bool("allow_fall", &r->allow_fall);
+  m.RejectUnknownKeys();
+}
+
+void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
+  const NumberRange rate = NumberRange::OpenClosed(0, physics_rate_hz);
+  YamlMapReader cam = m.Map("camera");
+  cam.Number("rate_hz", &s->camera.rate_hz, rate);
+  cam.Integer("width", &s->camera.width, NumberRange::Closed(16, 4096));
+  cam.Integer("height", &s->camera.height, NumberRange::Closed(16, 4096));
+  cam.Number("fovy_deg", &s->camera.fovy_deg, NumberRange::Open(0, 180));
+  cam.Number("baseline_m", &s->camera.baseline_m, NumberRange::OpenClosed(0, 1));
+  cam.Number("noise_std", &s->camera.noise_std, NumberRange::Closed(0, 255));
+  cam.Bool("depth", &s->camera.depth);
+  cam.Bool("segmentation", &s->camera.segmentation);
+  cam.RejectUnknownKeys();
+
+  YamlMapReader imu = m.Map("imu");
+  imu.Number("rate_hz", &s->imu.rate_hz, rate);
+  imu.Number("accel_noise", &s->imu.accel_noise, NumberRange::NonNegative());
+  imu.Number("gyro_noise", &s->imu.gyro_noise, NumberRange::NonNegative());
+  imu.Number("accel_bias_walk", &s->imu.accel_bias_walk, NumberRange::NonNegative());
+  imu.Number("gyro_bias_walk", &s->imu.gyro_bias_walk, NumberRange::NonNegative());
+  imu.RejectUnknownKeys();
+
+  YamlMapReader joints = m.Map("joints");
+  joints.Number("rate_hz", &s->joints.rate_hz, rate);
+  joints.Number("noise_rad", &s->joints.noise_rad, NumberRange::NonNegative());
+  joints.Number("resolution_rad", &s->joints.resolution_rad, NumberRange::Closed(0, 0.1));
+  joints.RejectUnknownKeys();
+
+  YamlMapReader seg = m.Map("segmentation");
+  seg.Number("miss_rate", &s->segmentation.miss_rate, NumberRange::Closed(0, 1));
+  seg.Integer("dilate_px", &s->segmentation.dilate_px, NumberRange::Closed(0, 50));
+  seg.Integer("latency_frames", &s->segmentation.latency_frames, NumberRange::Closed(0, 100));
+  seg.RejectUnknownKeys();
+  m.RejectUnknownKeys();
+}
+
+// Expected number of size_m entries per category.
+size_t SizeEntries(const std::string& category) {
+  return (category == "box" || category == "furniture") ? 3 : 1;
+}
+
+void ReadObstacles(const YamlSource& src, const YAML::Node& list, const std::string& key_path,
+                   std::vector<ObstacleConfig>* out) {
+  out->clear();
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node item = Element(list, i);
+    YamlMapReader m(src, item, JoinKeyPath(key_path, std::to_string(i)), item);
+    ObstacleConfig o;
+    m.Require("name");
+    ReadSafeName(&m, "name", &o.name);
+    if (!names.insert(o.name).second) {
+      src.Fail(m.KeyPath("name"), m.Get("name"), "obstacle name '" + o.name + "' is used twice");
+    }
+    m.Choice("category", &o.category, kCategories);
+    m.NumberList("size_m", &o.size_m, SizeEntries(o.category), NumberRange::OpenClosed(0, 10));
+    m.Require("path");
+    o.path = ReadPointList(src, m.List("path"), m.KeyPath("path"));
+    if (o.path.empty()) {
+      src.Fail(m.KeyPath("path"), m.Get("path"),
+               "key '" + m.KeyPath("path") + "' expected a list of at least one [x, y] point, got an empty list");
+    }
+    m.Number("speed_mps", &o.speed_mps, NumberRange::OpenClosed(0, 10));
+    m.Number("start_s", &o.start_s, NumberRange::NonNegative());
+    m.Number("pause_s", &o.pause_s, NumberRange::NonNegative());
+    m.Choice("loop", &o.loop, kLoopModes);
+    m.Number("yaw_deg", &o.yaw_deg, NumberRange::Closed(-360, 360));
+    m.RejectUnknownKeys();
+    out->push_back(o);
+  }
+}
+
+void ReadTerrain(YamlMapReader m, TerrainConfig* t) {
+  m.Number("friction", &t->friction, NumberRange::OpenClosed(0, 10));
+  const YAML::Node patches = m.List("patches");
+  t->patches.clear();
+  for (size_t i = 0; i < patches.size(); ++i) {
+    const YAML::Node item = Element(patches, i);
+    YamlMapReader p(m.source(), item, JoinKeyPath(m.KeyPath("patches"), std::to_string(i)), item);
+    FrictionPatch patch;
+    p.Require("center");
+    ReadVec2(&p, "center", &patch.center);
+    ReadVec2(&p, "size", &patch.size, NumberRange::OpenClosed(0, 100));
+    p.Number("friction", &patch.friction, NumberRange::OpenClosed(0, 10));
+    p.RejectUnknownKeys();
+    t->patches.push_back(patch);
+  }
+  const YAML::Node slopes = m.List("slopes");
+  t->slopes.clear();
+  for (size_t i = 0; i < slopes.size(); ++i) {
+    const YAML::Node item = Element(slopes, i);
+    YamlMapReader s(m.source(), item, JoinKeyPath(m.KeyPath("slopes"), std::to_string(i)), item);
+    Slope slope;
+    s.Require("center");
+    ReadVec2(&s, "center", &slope.center);
+    ReadVec2(&s, "size", &slope.size, NumberRange::OpenClosed(0, 100));
+    s.Number("angle_deg", &slope.angle_deg, NumberRange::Open(-45, 45));
+    s.Number("yaw_deg", &slope.yaw_deg, NumberRange::Closed(-360, 360));
+    s.RejectUnknownKeys();
+    t->slopes.push_back(slope);
+  }
+  m.RejectUnknownKeys();
+}
+
+void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
+  m.Choice("mode", &s->mode, kSlamModes);
+  ReadFilePath(&m, "config", base_dir, &s->config);
+  YamlMapReader d = m.Map("dynamic");
+  d.Choice("method", &s->dynamic.method, kDynamicMethods);
+  d.Number("alpha", &s->dynamic.alpha, NumberRange::NonNegative());
+  d.Number("beta", &s->dynamic.beta, NumberRange::NonNegative());
+  d.Number("gamma", &s->dynamic.gamma, NumberRange::NonNegative());
+  d.Number("th_d", &s->dynamic.th_d, NumberRange::NonNegative());
+  d.Number("window_s", &s->dynamic.window_s, NumberRange::Positive());
+  d.Integer("window_n", &s->dynamic.window_n, NumberRange::Closed(2, 10000));
+  d.RejectUnknownKeys();
+  m.RejectUnknownKeys();
+}
+
+}  // namespace
+
+Scenario LoadScenario(const std::string& path, const std::vector<std::string>& overrides) {
+  YamlSource src(path);
+  YAML::Node root = LoadYamlFile(path);
+  for (const std::string& o : overrides) ApplyYamlOverride(&root, o, &src);
+
+  const fs::path abs_path = fs::absolute(path).lexically_normal();
+  const fs::path base_dir = abs_path.parent_path();
+  Scenario s;
+  s.source_file = abs_path.string();
+
+  YamlMapReader top(src, root, "");
+  top.Require("name");
+  ReadSafeName(&top, "name", &s.name);
+  top.Unsigned("seed", &s.seed);
+  top.Number("duration_s", &s.duration_s, NumberRange::OpenClosed(0, 24 * 3600));
+  YamlMapReader physics = top.Map("physics");
+  physics.Number("timestep_s", &s.physics_dt_s, NumberRange::OpenClosed(0, 0.01));
+  physics.RejectUnknownKeys();
+  top.Require("world");
+  ReadFilePath(&top, "world", base_dir, &s.world);
+  top.Require("robot");
+  ReadRobot(top.Map("robot"), base_dir, &s.robot);
+  ReadSensors(top.Map("sensors"), 1.0 / s.physics_dt_s, &s.sensors);
+  ReadObstacles(src, top.List("obstacles"), "obstacles", &s.obstacles);
+  ReadTerrain(top.Map("terrain"), &s.terrain);
+  ReadSlam(top.Map("slam"), base_dir, &s.slam);
+  top.RejectUnknownKeys();
+  return s;
+}
+
+}  // namespace viqu
