@@ -17,10 +17,11 @@ void RequireNonNegative(double value, const char* name) {
   }
 }
 
-void RequireFinite(const Eigen::Vector3d& v, const char* name, int64_t t_ns) {
+// `when` says where the vector came from, e.g. "at t_ns 5000000".
+void RequireFinite(const Eigen::Vector3d& v, const char* name, const std::string& when) {
   if (!v.allFinite()) {
     std::ostringstream msg;
-    msg << "ImuModel: non-finite " << name << " (" << v.transpose() << ") at t_ns " << t_ns;
+    msg << "ImuModel: non-finite " << name << " (" << v.transpose() << ") " << when;
     throw viqu::InputError(msg.str());
   }
 }
@@ -40,8 +41,8 @@ ImuModel::ImuModel(const viqu::ImuConfig& config, uint64_t seed, const ImuBiasOp
   RequireNonNegative(config.gyro_bias_walk, "gyro_bias_walk");
   RequireNonNegative(bias.accel_bias_std, "accel_bias_std");
   RequireNonNegative(bias.gyro_bias_std, "gyro_bias_std");
-  if (bias.accel_bias_i) RequireFinite(*bias.accel_bias_i, "initial accel bias", 0);
-  if (bias.gyro_bias_i) RequireFinite(*bias.gyro_bias_i, "initial gyro bias", 0);
+  if (bias.accel_bias_i) RequireFinite(*bias.accel_bias_i, "initial accel bias", "in ImuBiasOptions");
+  if (bias.gyro_bias_i) RequireFinite(*bias.gyro_bias_i, "initial gyro bias", "in ImuBiasOptions");
   // Always draw both initial biases, even when fixed ones are given, so that the noise stream
   // that follows is the same whichever option is used.
   const Eigen::Vector3d drawn_accel = Gaussian3(bias.accel_bias_std);
@@ -58,8 +59,11 @@ Eigen::Vector3d ImuModel::Gaussian3(double std) {
 
 viqu::ImuSample ImuModel::Measure(int64_t t_ns, const Eigen::Vector3d& true_accel_i,
                                   const Eigen::Vector3d& true_gyro_i) {
-  RequireFinite(true_accel_i, "true_accel_i", t_ns);
-  RequireFinite(true_gyro_i, "true_gyro_i", t_ns);
+  if (!true_accel_i.allFinite() || !true_gyro_i.allFinite()) {  // format only on failure
+    const std::string when = "at t_ns " + std::to_string(t_ns);
+    RequireFinite(true_accel_i, "true_accel_i", when);
+    RequireFinite(true_gyro_i, "true_gyro_i", when);
+  }
   if (last_t_ns_ && t_ns <= *last_t_ns_) {
     std::ostringstream msg;
     msg << "ImuModel: timestamps must increase, got t_ns " << t_ns << " after " << *last_t_ns_;
