@@ -112,8 +112,12 @@ StereoRenderer::StereoRenderer(const mjModel* m, const RenderOptions& opt) : opt
   }
   intrinsics_ = IntrinsicsFromFovy(opt_.width, opt_.height, fovy_deg);
   baseline_m_ = RectifiedBaselineOrThrow(m, cam_left_, cam_right_);
-  z_near_ = static_cast<float>(m->vis.map.znear * m->stat.extent);
-  z_far_ = static_cast<float>(m->vis.map.zfar * m->stat.extent);
+  z_near_ = static_cast<float>(opt_.z_near_m > 0 ? opt_.z_near_m : m->vis.map.znear * m->stat.extent);
+  z_far_ = static_cast<float>(opt_.z_far_m > 0 ? opt_.z_far_m : m->vis.map.zfar * m->stat.extent);
+  if (!(z_near_ > 0 && z_far_ > z_near_)) {
+    throw RunError("stereo renderer: clipping planes need 0 < near < far, got near " + std::to_string(z_near_) +
+                   " m, far " + std::to_string(z_far_) + " m");
+  }
 
   egl_ = EglContext::Create();
 
@@ -180,8 +184,27 @@ void StereoRenderer::RenderCamera(const mjModel* m, mjData* d, int cam_id, bool 
   } else {
     mjv_updateCamera(m, d, &cam_, &scn_);  // the geoms of this instant are already in the scene
   }
+  SetClipPlanes();
   mjr_render(viewport_, &scn_, &con_);
   mjr_readPixels(rgb_buf_.data(), depth ? depth_buf_.data() : nullptr, viewport_, &con_);
+}
+
+void StereoRenderer::SetClipPlanes() {
+  const double tan_half_fovy = 0.5 * opt_.height / intrinsics_.fy;
+  for (mjvGLCamera& c : scn_.camera) {
+    // MuJoCo 2.2.2 sets a frustum symmetric about the axis: top = -bottom = near * tan(fovy/2).
+    const double top = c.frustum_top / c.frustum_near, bottom = c.frustum_bottom / c.frustum_near;
+    if (std::abs(top - tan_half_fovy) > 1e-5 || std::abs(bottom + tan_half_fovy) > 1e-5 || c.frustum_center != 0) {
+      throw RunError("stereo renderer: MuJoCo's camera frustum (top " + std::to_string(top) + ", bottom " +
+                     std::to_string(bottom) + ", centre " + std::to_string(c.frustum_center) +
+                     " at unit distance) does not match the pinhole intrinsics (tan(fovy/2) = " +
+                     std::to_string(tan_half_fovy) + ")");
+    }
+    c.frustum_bottom = static_cast<float>(z_near_ * bottom);
+    c.frustum_top = static_cast<float>(z_near_ * top);
+    c.frustum_near = z_near_;
+    c.frustum_far = z_far_;
+  }
 }
 
 namespace {

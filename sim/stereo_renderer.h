@@ -24,6 +24,12 @@ struct RenderOptions {
   bool skybox = false;         // draw the skybox texture
   bool haze = false;           // horizon haze at the edge of planes
   int max_lights = -1;         // use at most this many scene lights, headlight first; -1 = all
+  // Clipping planes of the cameras (m); <= 0 = the model's vis.map.znear/zfar * stat.extent.
+  // Explicit by default: the model's planes scale with the world's size, and a camera 7 cm above
+  // the floor sees floor 0.1 m ahead at its bottom row, which a near plane of 1% of a room's
+  // extent clips away. Depth resolution at z is about z^2 / z_near * 2^-24 (24-bit depth).
+  double z_near_m = 0.01;
+  double z_far_m = 100.0;
   // MSAA samples of the off-screen buffer; -1 = the model's <visual><quality offsamples> (MuJoCo
   // default 4). Default 0: 4x MSAA makes a software-rendered 640x480 stereo frame about 2.5x
   // slower, and its depth comes from one sample off the pixel centre (bench/bench_render.cc).
@@ -68,12 +74,15 @@ class StereoRenderer {
   void RenderCamera(const mjModel* m, mjData* d, int cam_id, bool depth);
   void RenderSegmentation(const mjModel* m, StereoFrame* out);
   void ApplySceneFlags();
+  // Sets the clipping planes of the scene's GL cameras to z_near_/z_far_ and checks that the
+  // frustum matches the intrinsics.
+  void SetClipPlanes();
 
   RenderOptions opt_;
   int cam_left_ = -1, cam_right_ = -1;  // camera ids in the model
   PinholeIntrinsics intrinsics_;
   double baseline_m_ = 0;               // (m)
-  float z_near_ = 0, z_far_ = 0;        // clipping planes of the depth buffer (m)
+  float z_near_ = 0, z_far_ = 0;        // clipping planes of the cameras (m)
   SegmentationIds ids_;
 
   std::unique_ptr<EglContext> egl_;

@@ -357,6 +357,35 @@ TEST_F(RendererTest, RightImageShiftedByDisparity) {
   }
 }
 
+// A camera 7 cm above the floor in a large room (extent ~ 20 m) sees the floor 0.1 m ahead at
+// its bottom row: the near plane must not clip it, and the depth there is h * fy / (v - cy).
+TEST(RendererNearTest, LowCameraSeesTheFloorAtItsFeet) {
+  const std::string xml = R"(<mujoco><visual><global offwidth="320" offheight="240"/></visual><worldbody>
+      <geom type="plane" size="10 10 0.1" rgba=".5 .5 .5 1"/>
+      <geom type="box" pos="10 0 1" size="0.1 10 1" rgba=".7 .7 .7 1"/>
+      <camera name="cam_left" pos="0 0.02 0.07" xyaxes="0 -1 0 0 0 1" fovy="70"/>
+      <camera name="cam_right" pos="0 -0.02 0.07" xyaxes="0 -1 0 0 0 1" fovy="70"/>
+      </worldbody></mujoco>)";
+  ModelPtr m = LoadModelString(xml, "low camera");
+  DataPtr d(mj_makeData(m.get()));
+  mj_forward(m.get(), d.get());
+  RenderOptions opt;
+  opt.width = 320;
+  opt.height = 240;
+  opt.segmentation = false;
+  StereoRenderer r(m.get(), opt);
+  StereoFrame f;
+  r.Render(m.get(), d.get(), &f);
+  EXPECT_TRUE(f.left_instance_id.empty());
+  EXPECT_TRUE(f.instances.empty());
+  const PinholeIntrinsics& k = f.intrinsics;
+  for (int v : {opt.height - 1, opt.height - 20, opt.height / 2 + 20}) {
+    const double expected = 0.07 * k.fy / (v - k.cy);
+    EXPECT_NEAR(f.left_depth_m.at<float>(v, opt.width / 2), expected, 0.005 * expected) << "row " << v;
+  }
+  EXPECT_TRUE(TakeMujocoWarnings().empty());
+}
+
 TEST(RendererSetupTest, RejectsMissingCameraAndOversizedImages) {
   const std::string no_right = R"(<mujoco><worldbody>
       <camera name="cam_left" pos="0 0 1"/><geom type="sphere" size="0.1"/></worldbody></mujoco>)";
