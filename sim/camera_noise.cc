@@ -9,16 +9,16 @@
 
 namespace viqu::sim {
 
-void AddPixelNoise(cv::Mat* rgb, double std, std::mt19937_64* rng) {
+void AddPixelNoise(cv::Mat* rgb, double noise_std, std::mt19937_64* rng) {
   if (rgb == nullptr || rng == nullptr) {
     throw viqu::InputError("AddPixelNoise: null image or generator");
   }
-  if (!(std >= 0.0) || !std::isfinite(std)) {
+  if (!(noise_std >= 0.0) || !std::isfinite(noise_std)) {
     std::ostringstream msg;
-    msg << "AddPixelNoise: std must be finite and >= 0, got " << std;
+    msg << "AddPixelNoise: noise_std must be finite and >= 0, got " << noise_std;
     throw viqu::InputError(msg.str());
   }
-  if (rgb->empty() || std == 0.0) return;
+  if (rgb->empty() || noise_std == 0.0) return;
   if (rgb->depth() != CV_8U) {
     std::ostringstream msg;
     msg << "AddPixelNoise: expected an 8-bit image, got OpenCV type " << rgb->type();
@@ -31,7 +31,7 @@ void AddPixelNoise(cv::Mat* rgb, double std, std::mt19937_64* rng) {
   cv::RNG cv_rng(state);
   // int16 noise: rounded to whole grey levels by fill(); cv::add saturates the sum to [0, 255].
   cv::Mat noise(rgb->size(), CV_MAKETYPE(CV_16S, rgb->channels()));
-  cv_rng.fill(noise, cv::RNG::NORMAL, 0.0, std);
+  cv_rng.fill(noise, cv::RNG::NORMAL, 0.0, noise_std);
   cv::add(*rgb, noise, *rgb, cv::noArray(), CV_8U);
 }
 

@@ -6,16 +6,17 @@
 
 namespace viqu::sim {
 
-// Adds independent Gaussian noise N(0, std^2) (grey levels) to every channel of every pixel of
-// an 8-bit image (CV_8UC1/3/4), rounding the noise to whole grey levels and saturating the sum to
-// [0, 255]. Because the output is digital, the realised noise std on a mid-grey image is
-// sqrt(std^2 + 1/12) (rounding), 2.02 for std = 2.
+// Adds independent Gaussian noise N(0, noise_std^2) (grey levels) to every channel of every
+// pixel of an 8-bit image (CV_8UC1/3/4), rounding the noise to whole grey levels and saturating
+// the sum to [0, 255]. Because the output is digital, the realised noise std on a mid-grey image
+// is sqrt(noise_std^2 + 1/12) (rounding), 2.02 for noise_std = 2.
 //
 // Determinism: the noise comes from a cv::RNG (OpenCV's fast vectorised generator, about 3 ms
 // per 640x480 RGB image) seeded with one 64-bit draw from *rng per call, never from cv::theRNG;
 // so the result depends only on the state of *rng, which advances by exactly one draw per call
-// with std > 0 (none when std == 0 or the image is empty).
-// Throws viqu::InputError for a null pointer, a non-8-bit image, or a negative / non-finite std.
-void AddPixelNoise(cv::Mat* rgb, double std, std::mt19937_64* rng);
+// with noise_std > 0 (none when noise_std == 0 or the image is empty).
+// Throws viqu::InputError for a null pointer, a non-8-bit image, or a negative / non-finite
+// noise_std.
+void AddPixelNoise(cv::Mat* rgb, double noise_std, std::mt19937_64* rng);
 
 }  // namespace viqu::sim

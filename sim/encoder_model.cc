@@ -20,7 +20,8 @@ void RequireFinite(const std::array<double, viqu::kNumJoints>& v, const char* na
   for (int j = 0; j < viqu::kNumJoints; ++j) {
     if (!std::isfinite(v[j])) {
       std::ostringstream msg;
-      msg << "EncoderModel: non-finite " << name << "[" << j << "] = " << v[j] << " at t_ns " << t_ns;
+      msg << "EncoderModel: non-finite " << name << "[" << j << "] = " << v[j] << " at t_ns "
+          << t_ns;
       throw viqu::InputError(msg.str());
     }
   }

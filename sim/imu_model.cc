@@ -41,8 +41,12 @@ ImuModel::ImuModel(const viqu::ImuConfig& config, uint64_t seed, const ImuBiasOp
   RequireNonNegative(config.gyro_bias_walk, "gyro_bias_walk");
   RequireNonNegative(bias.accel_bias_std, "accel_bias_std");
   RequireNonNegative(bias.gyro_bias_std, "gyro_bias_std");
-  if (bias.accel_bias_i) RequireFinite(*bias.accel_bias_i, "initial accel bias", "in ImuBiasOptions");
-  if (bias.gyro_bias_i) RequireFinite(*bias.gyro_bias_i, "initial gyro bias", "in ImuBiasOptions");
+  if (bias.accel_bias_i) {
+    RequireFinite(*bias.accel_bias_i, "initial accel bias", "in ImuBiasOptions");
+  }
+  if (bias.gyro_bias_i) {
+    RequireFinite(*bias.gyro_bias_i, "initial gyro bias", "in ImuBiasOptions");
+  }
   // Always draw both initial biases, even when fixed ones are given, so that the noise stream
   // that follows is the same whichever option is used.
   const Eigen::Vector3d drawn_accel = Gaussian3(bias.accel_bias_std);

@@ -17,7 +17,7 @@ namespace viqu::sim {
 // on with a bias that the estimator must find, so by default each axis is drawn once from the
 // seeded generator, N(0, std^2). Setting a value fixes it instead (tests, replays).
 struct ImuBiasOptions {
-  std::optional<Eigen::Vector3d> accel_bias_i;  // fixed initial accelerometer bias, IMU frame (m/s^2)
+  std::optional<Eigen::Vector3d> accel_bias_i;  // fixed initial accel bias, IMU frame (m/s^2)
   std::optional<Eigen::Vector3d> gyro_bias_i;   // fixed initial gyro bias, IMU frame (rad/s)
   double accel_bias_std = 0.02;   // std of the drawn initial accelerometer bias per axis (m/s^2)
   double gyro_bias_std = 0.002;   // std of the drawn initial gyro bias per axis (rad/s)

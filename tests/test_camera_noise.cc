@@ -16,17 +16,17 @@ namespace {
 // sqrt(std^2 + 1/12) (Sheppard's correction). A 640x480x3 image gives 921600 values: the std
 // estimate is good to 0.1%, so 2% is a tight check of the scale.
 TEST(CameraNoise, NoiseStdMatchesConfigPerChannel) {
-  for (const double std : {2.0, 5.0}) {
+  for (const double noise_std : {2.0, 5.0}) {
     cv::Mat img(480, 640, CV_8UC3, cv::Scalar::all(128));
     std::mt19937_64 rng(17);
-    AddPixelNoise(&img, std, &rng);
+    AddPixelNoise(&img, noise_std, &rng);
     cv::Mat diff;
     img.convertTo(diff, CV_64FC3, 1.0, -128.0);
     cv::Scalar mean, stddev;
     cv::meanStdDev(diff, mean, stddev);
-    const double expect = std::sqrt(std * std + 1.0 / 12.0);
+    const double expect = std::sqrt(noise_std * noise_std + 1.0 / 12.0);
     for (int c = 0; c < 3; ++c) {
-      std::printf("std %.1f channel %d: mean %.4f std %.4f (expected %.4f)\n", std, c, mean[c],
+      std::printf("std %.1f channel %d: mean %.4f std %.4f (expected %.4f)\n", noise_std, c, mean[c],
                   stddev[c], expect);
       EXPECT_NEAR(stddev[c], expect, 0.02 * expect);
       EXPECT_NEAR(mean[c], 0.0, 0.02);
@@ -42,9 +42,9 @@ TEST(CameraNoise, NoiseStdMatchesConfigPerChannel) {
 // Expected mean of max(0, round(n)) and P(round(n) > 0) for n ~ N(0, std^2): what the black
 // image must show if the sum saturates at 0 instead of wrapping around.
 double Phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
-double ClippedRoundedMean(double std) {
+double ClippedRoundedMean(double noise_std) {
   double m = 0;
-  for (int k = 1; k < 255; ++k) m += k * (Phi((k + 0.5) / std) - Phi((k - 0.5) / std));
+  for (int k = 1; k < 255; ++k) m += k * (Phi((k + 0.5) / noise_std) - Phi((k - 0.5) / noise_std));
   return m;
 }
 
@@ -52,24 +52,24 @@ double ClippedRoundedMean(double std) {
 // fraction above 0 is P(n >= 0.5) and the mean is E[max(0, round(n))] (0.40 and 0.79 for std 2);
 // white mirrors black. 921600 values: sampling error of the mean ~0.001, of the fraction ~0.0005.
 TEST(CameraNoise, SaturatesAtBlackAndWhite) {
-  const double std = 2.0;
+  const double noise_std = 2.0;
   std::mt19937_64 rng(3);
   cv::Mat black(480, 640, CV_8UC3, cv::Scalar::all(0));
   cv::Mat white(480, 640, CV_8UC3, cv::Scalar::all(255));
-  AddPixelNoise(&black, std, &rng);
-  AddPixelNoise(&white, std, &rng);
+  AddPixelNoise(&black, noise_std, &rng);
+  AddPixelNoise(&white, noise_std, &rng);
   double min_v, max_v;
   cv::minMaxLoc(black.reshape(1), &min_v, &max_v);
   EXPECT_EQ(min_v, 0);
-  EXPECT_LE(max_v, 6 * std);  // no wrap-around to 255
+  EXPECT_LE(max_v, 6 * noise_std);  // no wrap-around to 255
   cv::minMaxLoc(white.reshape(1), &min_v, &max_v);
   EXPECT_EQ(max_v, 255);
-  EXPECT_GE(min_v, 255 - 6 * std);
+  EXPECT_GE(min_v, 255 - 6 * noise_std);
   const double n = static_cast<double>(black.total() * 3);
   const double black_mean = cv::mean(black.reshape(1))[0];
   const double white_mean = cv::mean(white.reshape(1))[0];
   const double black_above = cv::countNonZero(black.reshape(1)) / n;
-  const double expect_mean = ClippedRoundedMean(std), expect_above = 1 - Phi(0.5 / std);
+  const double expect_mean = ClippedRoundedMean(noise_std), expect_above = 1 - Phi(0.5 / noise_std);
   std::printf("black: mean %.4f above0 %.4f; white: 255-mean %.4f; expected %.4f and %.4f\n",
               black_mean, black_above, 255 - white_mean, expect_mean, expect_above);
   EXPECT_NEAR(black_mean, expect_mean, 0.01);
