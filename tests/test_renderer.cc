@@ -357,6 +357,25 @@ TEST_F(RendererTest, RightImageShiftedByDisparity) {
   }
 }
 
+// Two renderers in one process (one EGL display, two contexts) take turns; each makes its own
+// context current and both give the same images. Destroying one leaves the other working.
+TEST_F(RendererTest, TwoRenderersTakeTurns) {
+  RenderOptions opt;
+  opt.width = kWidth;
+  opt.height = kHeight;
+  auto second = std::make_unique<StereoRenderer>(model_, opt);
+  StereoFrame a, b;
+  renderer_->Render(model_, data_, &a);
+  second->Render(model_, data_, &b);
+  EXPECT_EQ(cv::norm(a.left_rgb, b.left_rgb, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(a.right_rgb, b.right_rgb, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(a.left_instance_id, b.left_instance_id, cv::NORM_INF), 0.0);
+  second.reset();
+  const StereoFrame c = Render();
+  EXPECT_EQ(cv::norm(a.left_rgb, c.left_rgb, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(a.left_depth_m, c.left_depth_m, cv::NORM_INF), 0.0);
+}
+
 // A camera 7 cm above the floor in a large room (extent ~ 20 m) sees the floor 0.1 m ahead at
 // its bottom row: the near plane must not clip it, and the depth there is h * fy / (v - cy).
 TEST(RendererNearTest, LowCameraSeesTheFloorAtItsFeet) {
