@@ -39,7 +39,7 @@ std::string TerrainXml(const TerrainConfig& terrain) {
        " texuniform=\"true\" specular=\"0.8\" shininess=\"0.9\" reflectance=\"0\"/>\n"
     << "  <texture name=\"viqu_terrain_ramp\" type=\"2d\" file=\"" << dir
     << "floor_terrazzo.png\"/>\n"
-    << "  <material name=\"viqu_terrain_ramp\" texture=\"viqu_terrain_ramp\" texrepeat=\"2 2\""
+    << "  <material name=\"viqu_terrain_ramp\" texture=\"viqu_terrain_ramp\" texrepeat=\"1.2 1.2\""
        " texuniform=\"true\"/>\n"
     << "</asset>\n<worldbody>\n";
   for (size_t i = 0; i < terrain.patches.size(); ++i) {

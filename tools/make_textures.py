@@ -175,11 +175,12 @@ def poster(c, rng, x, y, w, h):
 
 
 # ---------------------------------------------------------------- textures
-def floor_wood(rng, size=512):
+def floor_wood(rng, size=1024):
     """Wooden planks of random lengths, grain lines, knots, scuffs and scattered grit."""
     c = Canvas(size, size, (150, 105, 60))
-    plank_h = size // 8
-    for row in range(8):
+    area = (size // 512) ** 2
+    plank_h = 64
+    for row in range(size // plank_h):
         y0 = row * plank_h
         x = rng.randrange(size)
         start = x
@@ -201,42 +202,44 @@ def floor_wood(rng, size=512):
             c.rect(x, y0, x + 2, y0 + plank_h, (50, 32, 18))  # butt joint
             x += length
         c.rect(0, y0, size, y0 + 2, (45, 28, 15))  # seam between plank rows
-    chips(c, rng, 700, 1, 4, [(35, 25, 20), (230, 220, 200), (20, 20, 20), (90, 90, 95)])
-    speckles(c, rng, 80, 3, 9, [(70, 50, 35), (210, 190, 160), (40, 60, 90)])
+    chips(c, rng, 700 * area, 1, 4, [(35, 25, 20), (230, 220, 200), (20, 20, 20), (90, 90, 95)])
+    speckles(c, rng, 80 * area, 3, 9, [(70, 50, 35), (210, 190, 160), (40, 60, 90)])
     return c
 
 
-def terrazzo(rng, base, palette, size=512, count=2600):
+def terrazzo(rng, base, palette, size=1024, count=10400):
     c = Canvas(size, size, base)
     chips(c, rng, count, 2, 9, palette)
     speckles(c, rng, count // 3, 1, 3, palette)
     return c
 
 
-def wall_posters(rng, size=512):
+def wall_posters(rng, size=1024):
     """Painted wall with blotches, overlapping posters, notes and scribbles at several scales."""
     c = Canvas(size, size, (205, 198, 182))
-    for _ in range(40):  # large faint blotches
+    area = (size // 512) ** 2
+    for _ in range(40 * area):  # large faint blotches
         c.ellipse(rng.randrange(size), rng.randrange(size), rng.randint(20, 70),
                   rng.randint(15, 50), jitter(rng, (195, 188, 170), 18))
-    for _ in range(9):
+    for _ in range(9 * area):
         w, h = rng.randint(90, 200), rng.randint(110, 230)
         poster(c, rng, rng.randrange(size), rng.randrange(size), w, h)
-    for _ in range(40):  # sticky notes and small cards
+    for _ in range(40 * area):  # sticky notes and small cards
         w, h = rng.randint(12, 40), rng.randint(12, 40)
         x, y = rng.randrange(size), rng.randrange(size)
         col = rng.choice([(250, 230, 90), (120, 200, 240), (250, 140, 160), (255, 255, 255)])
         c.rect(x, y, x + w, y + h, col)
         text_line(c, rng, x + 2, y + 3, 5, w - 6, (30, 30, 60))
-    chips(c, rng, 500, 1, 4, [(60, 55, 50), (20, 20, 20), (240, 240, 240), (150, 40, 40)])
+    chips(c, rng, 500 * area, 1, 4, [(60, 55, 50), (20, 20, 20), (240, 240, 240), (150, 40, 40)])
     return c
 
 
-def brick(rng, size=512):
+def brick(rng, size=1024):
     """Irregular brick bond: bricks of varying length and colour, dark mortar, chipped corners."""
     c = Canvas(size, size, (70, 66, 62))
-    bh = size // 16
-    for row in range(16):
+    area = (size // 512) ** 2
+    bh = 32
+    for row in range(size // bh):
         y0 = row * bh
         x = rng.randrange(size)
         start = x
@@ -249,8 +252,8 @@ def brick(rng, size=512):
                 sx, sy = x + rng.randint(4, max(5, length - 6)), y0 + rng.randint(4, bh - 5)
                 c.rect(sx, sy, sx + rng.randint(2, 6), sy + rng.randint(1, 4), shade(col, 0.6))
             x += length
-    chips(c, rng, 400, 1, 3, [(40, 38, 36), (220, 210, 200), (90, 30, 25)])
-    for _ in range(3):
+    chips(c, rng, 400 * area, 1, 3, [(40, 38, 36), (220, 210, 200), (90, 30, 25)])
+    for _ in range(3 * area):
         w, h = rng.randint(80, 150), rng.randint(100, 180)
         poster(c, rng, rng.randrange(size), rng.randrange(size), w, h)
     return c
