@@ -7,6 +7,7 @@
 //
 // Times are wall-clock per stereo frame (Render call: scene update, GL passes, read-backs and
 // conversions); llvmpipe renders on worker threads, so CPU time of the caller would mislead.
+#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -14,6 +15,7 @@
 #include <benchmark/benchmark.h>
 
 #include "sim/mujoco_handles.h"
+#include "sim/scene_composer.h"
 #include "sim/stereo_renderer.h"
 
 namespace viqu::sim {
@@ -77,9 +79,8 @@ std::string RoomXml(int extra_lights) {
   return x.str();
 }
 
-// Renders frames of the room with `opt` (and `extra_lights`) and reports ms per stereo frame.
-void RunFrames(benchmark::State& state, const RenderOptions& opt, int extra_lights) {
-  ModelPtr m = LoadModelString(RoomXml(extra_lights), "bench room");
+// Renders frames of `m` with `opt` and reports ms per stereo frame.
+void RunFrames(benchmark::State& state, const RenderOptions& opt, ModelPtr m) {
   DataPtr d(mj_makeData(m.get()));
   mj_forward(m.get(), d.get());
   StereoRenderer renderer(m.get(), opt);
@@ -91,6 +92,11 @@ void RunFrames(benchmark::State& state, const RenderOptions& opt, int extra_ligh
   }
   state.SetLabel(renderer.device_description());
   for (const std::string& w : TakeMujocoWarnings()) state.SkipWithError(("MuJoCo warning: " + w).c_str());
+}
+
+// The inline room with `extra_lights`.
+void RunFrames(benchmark::State& state, const RenderOptions& opt, int extra_lights) {
+  RunFrames(state, opt, LoadModelString(RoomXml(extra_lights), "bench room"));
 }
 
 RenderOptions Lean(bool depth, bool segmentation) {
@@ -157,6 +163,32 @@ void BM_AllEffects(benchmark::State& state) {
   RunFrames(state, opt, 2);
 }
 BENCHMARK(BM_AllEffects)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
+
+// The project's own room world with the robot rat (models/worlds/room.xml + models/rat/rat.xml,
+// composed as a scenario would), robot at its start pose.
+void BM_ProjectRoom(benchmark::State& state) {
+  Scenario s;
+  s.name = "bench_render";
+  s.world = std::string(VIQU_SOURCE_DIR) + "/models/worlds/room.xml";
+  s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
+  if (!std::ifstream(s.world) || !std::ifstream(s.robot.model)) {
+    state.SkipWithError("models/worlds/room.xml or models/rat/rat.xml missing");
+    for (auto _ : state) {
+    }
+    return;
+  }
+  RenderOptions opt = Lean(state.range(0) != 0, state.range(1) != 0);
+  opt.multisamples = static_cast<int>(state.range(2));
+  RunFrames(state, opt, LoadModelString(ComposeSceneXml(s, SceneHeader{}, {}), "bench project room"));
+}
+BENCHMARK(BM_ProjectRoom)
+    ->ArgNames({"depth", "seg", "samples"})
+    ->Args({0, 0, 0})
+    ->Args({1, 1, 0})
+    ->Args({1, 1, 4})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(20);
 
 }  // namespace
 }  // namespace viqu::sim
