@@ -10,8 +10,13 @@ double SlewTo(double current, double target, double max_step) {
   return current + std::clamp(target - current, -max_step, max_step);
 }
 
-// Smooth 0 -> 1 with zero slope at both ends.
-double SmoothStep(double s) { return s * s * (3 - 2 * s); }
+// Cubic Hermite from x0 to x1 over s in [0, 1] with slope m (dx/ds) at both ends. A swing foot
+// leaves and meets the ground moving with it (m = ground speed in the trunk frame times the swing
+// duration), so neither lift-off nor touch-down drags the foot.
+double Hermite(double x0, double x1, double m, double s) {
+  const double s2 = s * s, s3 = s2 * s;
+  return (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * m + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * m;
+}
 
 constexpr double kIdleCommand = 1e-4;  // |command| below this counts as "stand still"
 
@@ -87,7 +92,7 @@ std::array<double, kNumJoints> GaitController::Update(double dt_s, const BodyCom
       foot_x_[i] = std::clamp(foot_x_[i] - v_leg * dt_s, -half_max, half_max);
     } else {
       if (stance_[i]) liftoff_x_[i] = foot_x_[i];  // swing starts now
-      foot_x_[i] = liftoff_x_[i] + (touchdown_x - liftoff_x_[i]) * SmoothStep(ph.progress);
+      foot_x_[i] = Hermite(liftoff_x_[i], touchdown_x, -v_leg * schedule_.swing_duration_s(), ph.progress);
       z = gait_.step_height_m * std::sin(M_PI * ph.progress);
     }
     stance_[i] = ph.stance;

@@ -126,10 +126,10 @@ def urdf():
                 f'  <link name="{name}_foot"/>',
                 f'  <joint name="{name}_hip" type="revolute"><parent link="trunk"/><child link="{name}_thigh"/>'
                 f'<origin xyz="{f(sx * HIP_X, sy * HIP_Y, HIP_Z)}" rpy="0 0 0"/><axis xyz="0 -1 0"/>'
-                f'<limit lower="{lo_h:.9g}" upper="{hi_h:.9g}" effort="{TORQUE}" velocity="20"/></joint>',
+                f'<limit lower="{lo_h:.17g}" upper="{hi_h:.17g}" effort="{TORQUE}" velocity="20"/></joint>',
                 f'  <joint name="{name}_knee" type="revolute"><parent link="{name}_thigh"/><child link="{name}_shank"/>'
                 f'<origin xyz="0 0 {-L1}" rpy="0 0 0"/><axis xyz="0 -1 0"/>'
-                f'<limit lower="{lo_k:.9g}" upper="{hi_k:.9g}" effort="{TORQUE}" velocity="20"/></joint>',
+                f'<limit lower="{lo_k:.17g}" upper="{hi_k:.17g}" effort="{TORQUE}" velocity="20"/></joint>',
                 f'  <joint name="{name}_foot_fixed" type="fixed"><parent link="{name}_shank"/><child link="{name}_foot"/>'
                 f'<origin xyz="0 0 {-L2}" rpy="0 0 0"/></joint>']
     out += ['</robot>', '']

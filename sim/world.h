@@ -1,0 +1,73 @@
+#pragma once
+// The simulated world of one scenario: the composed MuJoCo model and its state, the scripted
+// obstacles, and ground-truth queries about the robot. Owns mjModel and mjData.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "scenario/scenario.h"
+#include "sim/mujoco_handles.h"
+#include "sim/obstacles.h"
+#include "slam/measurements/ground_truth_pose.h"
+#include "slam/measurements/joint_state.h"
+
+namespace viqu::sim {
+
+class World {
+ public:
+  // Composes and loads the scene (world + robot + obstacles + terrain), sets the floor friction,
+  // the camera fovy and baseline, and places the robot at its start pose standing on
+  // `q_stand` (joint angles, rad) with its trunk `stand_height_m` above the floor.
+  World(const Scenario& s, const std::array<double, kNumJoints>& q_stand, double stand_height_m);
+
+  const mjModel* model() const { return model_.get(); }
+  mjData* data() { return data_.get(); }
+  const mjData* data() const { return data_.get(); }
+
+  // Position-servo targets of the eight joints (rad).
+  void SetJointTargets(const std::array<double, kNumJoints>& q);
+
+  // One physics step: obstacles move to the current time, then mj_step.
+  void Step();
+
+  int64_t time_ns() const;  // simulated time (ns)
+  int64_t timestep_ns() const { return timestep_ns_; }
+
+  GroundTruthState GroundTruth() const;
+  std::array<double, kNumJoints> JointPositions() const;   // (rad)
+  std::array<double, kNumJoints> JointVelocities() const;  // (rad/s)
+  std::array<bool, kNumLegs> FootContacts() const;          // foot touches a non-robot geom
+  Eigen::Vector3d FootPositionWorld(Leg leg) const;         // foot centre (m)
+  Eigen::Vector3d FootVelocityWorld(Leg leg) const;         // foot centre velocity (m/s)
+  Eigen::Vector3d TrueAccel() const;  // accelerometer reading without noise (m/s^2, IMU frame)
+  Eigen::Vector3d TrueGyro() const;   // gyro reading without noise (rad/s, IMU frame)
+  bool TrunkTouchesGround() const;    // trunk or head geom in contact with a non-robot geom
+  double TrunkTiltRad() const;        // angle between trunk z and world z (rad)
+
+  // Left and right optical camera frames in the trunk frame (fixed).
+  Eigen::Isometry3d T_body_cam(bool right) const;
+
+  const ObstacleSet& obstacles() const { return *obstacles_; }
+  const std::string& composed_xml() const { return xml_; }
+
+ private:
+  bool IsRobotGeom(int geom) const;
+
+  std::string xml_;
+  ModelPtr model_;
+  DataPtr data_;
+  std::unique_ptr<ObstacleSet> obstacles_;
+  int64_t timestep_ns_ = 0;
+  int trunk_body_ = -1;
+  int cam_left_ = -1, cam_right_ = -1;
+  int accel_adr_ = -1, gyro_adr_ = -1;  // sensordata addresses
+  std::array<int, kNumJoints> qpos_adr_{}, dof_adr_{}, actuator_{};
+  std::array<int, kNumLegs> foot_geom_{}, foot_site_{};
+  std::vector<int> trunk_geoms_;
+};
+
+}  // namespace viqu::sim
