@@ -21,6 +21,11 @@ void Str(YAML::Emitter& out, const std::string& key, const std::string& value) {
   out << YAML::Key << key << YAML::Value << YAML::DoubleQuoted << value;
 }
 
+// A value from a fixed set of plain words (trot, full, ...): no quotes needed.
+void Word(YAML::Emitter& out, const std::string& key, const std::string& value) {
+  out << YAML::Key << key << YAML::Value << value;
+}
+
 void Number(YAML::Emitter& out, const std::string& key, double value) {
   out << YAML::Key << key << YAML::Value << Num(value);
 }
@@ -56,7 +61,7 @@ void Robot(YAML::Emitter& out, const RobotConfig& r) {
   Number(out, "yaw_deg", r.start.yaw_deg);
   out << YAML::EndMap;
   out << YAML::Key << "gait" << YAML::Value << YAML::Flow << YAML::BeginMap;
-  Str(out, "type", r.gait.type);
+  Word(out, "type", r.gait.type);
   Number(out, "frequency_hz", r.gait.frequency_hz);
   Number(out, "duty", r.gait.duty);
   Number(out, "step_height_m", r.gait.step_height_m);
@@ -64,9 +69,11 @@ void Robot(YAML::Emitter& out, const RobotConfig& r) {
   out << YAML::Key << "command" << YAML::Value << YAML::BeginMap;
   Points(out, "waypoints", r.command.waypoints);
   Number(out, "speed_mps", r.command.speed_mps);
-  Str(out, "follow", r.command.follow);
+  Word(out, "follow", r.command.follow);
   Bool(out, "loop", r.command.loop);
-  out << YAML::Key << "velocity" << YAML::Value << YAML::BeginSeq;
+  out << YAML::Key << "velocity" << YAML::Value;
+  if (r.command.velocity.empty()) out << YAML::Flow;
+  out << YAML::BeginSeq;
   for (const VelocityCommand& v : r.command.velocity) {
     out << YAML::Flow << YAML::BeginMap;
     Number(out, "t_s", v.t_s);
@@ -113,11 +120,13 @@ void Sensors(YAML::Emitter& out, const SensorsConfig& s) {
 }
 
 void Obstacles(YAML::Emitter& out, const std::vector<ObstacleConfig>& obstacles) {
-  out << YAML::Key << "obstacles" << YAML::Value << YAML::BeginSeq;
+  out << YAML::Key << "obstacles" << YAML::Value;
+  if (obstacles.empty()) out << YAML::Flow;
+  out << YAML::BeginSeq;
   for (const ObstacleConfig& o : obstacles) {
     out << YAML::BeginMap;
     Str(out, "name", o.name);
-    Str(out, "category", o.category);
+    Word(out, "category", o.category);
     if (!o.size_m.empty()) {
       out << YAML::Key << "size_m" << YAML::Value << YAML::Flow << YAML::BeginSeq;
       for (double x : o.size_m) out << Num(x);
@@ -127,7 +136,7 @@ void Obstacles(YAML::Emitter& out, const std::vector<ObstacleConfig>& obstacles)
     Number(out, "speed_mps", o.speed_mps);
     Number(out, "start_s", o.start_s);
     Number(out, "pause_s", o.pause_s);
-    Str(out, "loop", o.loop);
+    Word(out, "loop", o.loop);
     Number(out, "yaw_deg", o.yaw_deg);
     out << YAML::EndMap;
   }
@@ -137,7 +146,9 @@ void Obstacles(YAML::Emitter& out, const std::vector<ObstacleConfig>& obstacles)
 void Terrain(YAML::Emitter& out, const TerrainConfig& t) {
   out << YAML::Key << "terrain" << YAML::Value << YAML::BeginMap;
   Number(out, "friction", t.friction);
-  out << YAML::Key << "patches" << YAML::Value << YAML::BeginSeq;
+  out << YAML::Key << "patches" << YAML::Value;
+  if (t.patches.empty()) out << YAML::Flow;
+  out << YAML::BeginSeq;
   for (const FrictionPatch& p : t.patches) {
     out << YAML::Flow << YAML::BeginMap;
     VecKey(out, "center", p.center);
@@ -146,7 +157,9 @@ void Terrain(YAML::Emitter& out, const TerrainConfig& t) {
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
-  out << YAML::Key << "slopes" << YAML::Value << YAML::BeginSeq;
+  out << YAML::Key << "slopes" << YAML::Value;
+  if (t.slopes.empty()) out << YAML::Flow;
+  out << YAML::BeginSeq;
   for (const Slope& s : t.slopes) {
     out << YAML::Flow << YAML::BeginMap;
     VecKey(out, "center", s.center);
@@ -161,10 +174,10 @@ void Terrain(YAML::Emitter& out, const TerrainConfig& t) {
 
 void Slam(YAML::Emitter& out, const SlamConfig& s) {
   out << YAML::Key << "slam" << YAML::Value << YAML::BeginMap;
-  Str(out, "mode", s.mode);
+  Word(out, "mode", s.mode);
   if (!s.config.empty()) Str(out, "config", s.config);
   out << YAML::Key << "dynamic" << YAML::Value << YAML::Flow << YAML::BeginMap;
-  Str(out, "method", s.dynamic.method);
+  Word(out, "method", s.dynamic.method);
   Number(out, "alpha", s.dynamic.alpha);
   Number(out, "beta", s.dynamic.beta);
   Number(out, "gamma", s.dynamic.gamma);

@@ -1,0 +1,284 @@
+#include "sim/euroc_recorder.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include <unistd.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "common/atomic_file.h"
+#include "common/errors.h"
+
+namespace viqu::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kJointNames[kNumJoints] = {"FL_hip", "FL_knee", "FR_hip", "FR_knee",
+                                             "BL_hip", "BL_knee", "BR_hip", "BR_knee"};
+const char* const kFootNames[kNumLegs] = {"FL", "FR", "BL", "BR"};
+constexpr double kDepthUnitM = 0.001;  // depth0 PNG unit: millimetres
+
+std::string Fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), format, v);
+  return buf;
+}
+
+void MakeDirs(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw RunError("cannot create " + dir.string() + ": " + ec.message());
+}
+
+// "T_BS:" block of a EuRoC sensor.yaml: the sensor frame S in the body frame B, row-major.
+std::string TransformYaml(const Eigen::Isometry3d& T_B_S) {
+  const Eigen::Matrix4d m = T_B_S.matrix();
+  std::string s = "T_BS:\n  cols: 4\n  rows: 4\n  data: [";
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      s += Fmt("%.12g", m(r, c));
+      if (r < 3 || c < 3) s += c == 3 ? ",\n         " : ", ";
+    }
+  }
+  return s + "]\n";
+}
+
+std::string CameraYaml(const std::string& comment, const Eigen::Isometry3d& T_B_S, const EurocRig& rig,
+                       const std::string& extra) {
+  const PinholeIntrinsics& k = rig.intrinsics;
+  std::string s = "# General sensor definitions.\nsensor_type: camera\ncomment: " + comment + "\n\n";
+  s += "# Sensor extrinsics wrt. the body-frame.\n" + TransformYaml(T_B_S) + "\n";
+  s += "# Camera specific definitions.\n";
+  s += "rate_hz: " + Fmt("%.9g", rig.camera.rate_hz) + "\n";
+  s += "resolution: [" + std::to_string(k.width) + ", " + std::to_string(k.height) + "]\n";
+  s += "camera_model: pinhole\n";
+  s += "intrinsics: [" + Fmt("%.12g", k.fx) + ", " + Fmt("%.12g", k.fy) + ", " + Fmt("%.12g", k.cx) +
+       ", " + Fmt("%.12g", k.cy) + "]  # fu, fv, cu, cv\n";
+  s += "distortion_model: radial-tangential\n";
+  s += "distortion_coefficients: [0, 0, 0, 0]\n";
+  return s + extra;
+}
+
+std::string RowStamp(int64_t t_ns) { return std::to_string(t_ns); }
+
+}  // namespace
+
+EurocRecorder::EurocRecorder(const std::string& dataset_dir, const EurocRig& rig)
+    : final_dir_(fs::path(dataset_dir).lexically_normal().string()),
+      partial_dir_(final_dir_ + ".partial"),
+      mav0_(partial_dir_ + "/mav0"),
+      rig_(rig) {
+  std::error_code ec;
+  fs::remove_all(partial_dir_, ec);
+  if (ec) throw RunError("cannot remove stale " + partial_dir_ + ": " + ec.message());
+  MakeDirs(mav0_ + "/cam0/data");
+  MakeDirs(mav0_ + "/cam1/data");
+  if (rig_.camera.depth) MakeDirs(mav0_ + "/depth0/data");
+  if (rig_.camera.segmentation) MakeDirs(mav0_ + "/seg0/data");
+  MakeDirs(mav0_ + "/imu0");
+  MakeDirs(mav0_ + "/joints0");
+  MakeDirs(mav0_ + "/state_groundtruth_estimate0");
+
+  const std::string image_header = "#timestamp [ns],filename\n";
+  cam0_ = OpenCsv("cam0", image_header);
+  cam1_ = OpenCsv("cam1", image_header);
+  if (rig_.camera.depth) depth0_ = OpenCsv("depth0", image_header);
+  if (rig_.camera.segmentation) seg0_ = OpenCsv("seg0", image_header);
+  imu0_ = OpenCsv("imu0",
+                  "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+                  "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n");
+  std::string joints_header = "#timestamp [ns]";
+  for (const char* j : kJointNames) joints_header += std::string(",") + j + " [rad]";
+  for (const char* j : kJointNames) joints_header += std::string(",") + j + "_vel [rad s^-1]";
+  for (const char* f : kFootNames) joints_header += std::string(",") + f + "_contact [0/1]";
+  joints0_ = OpenCsv("joints0", joints_header + "\n");
+  gt0_ = OpenCsv("state_groundtruth_estimate0",
+                 "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
+                 "q_RS_z [], v_RS_R_x [m s^-1], v_RS_R_y [m s^-1], v_RS_R_z [m s^-1], "
+                 "b_w_RS_S_x [rad s^-1], b_w_RS_S_y [rad s^-1], b_w_RS_S_z [rad s^-1], "
+                 "b_a_RS_S_x [m s^-2], b_a_RS_S_y [m s^-2], b_a_RS_S_z [m s^-2]\n");
+}
+
+EurocRecorder::~EurocRecorder() {
+  if (finished_) return;
+  // Close (and delete) the temporary CSV files first, then the whole partial folder.
+  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &imu0_, &joints0_, &gt0_}) s->file.reset();
+  std::error_code ec;
+  fs::remove_all(partial_dir_, ec);
+}
+
+EurocRecorder::CsvStream EurocRecorder::OpenCsv(const std::string& folder, const std::string& header) const {
+  CsvStream s;
+  s.file = std::make_unique<AtomicOutputFile>(mav0_ + "/" + folder + "/data.csv");
+  s.file->Write(header);
+  return s;
+}
+
+void EurocRecorder::CheckStamp(CsvStream* s, int64_t t_ns, const char* what) const {
+  if (finished_) throw RunError(std::string("EurocRecorder: ") + what + " added after Finish()");
+  if (t_ns <= s->last_t_ns) {
+    throw RunError(std::string("EurocRecorder: ") + what + " timestamp " + std::to_string(t_ns) +
+                   " ns does not follow " + std::to_string(s->last_t_ns) + " ns");
+  }
+  s->last_t_ns = t_ns;
+}
+
+void EurocRecorder::WriteImage(const std::string& folder, CsvStream* csv, int64_t t_ns, const cv::Mat& image) {
+  CheckStamp(csv, t_ns, folder.c_str());
+  const std::string name = RowStamp(t_ns) + ".png";
+  const std::string path = mav0_ + "/" + folder + "/data/" + name;
+  static const std::vector<int> kPngFast = {cv::IMWRITE_PNG_COMPRESSION, 1};
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, image, kPngFast);
+  } catch (const cv::Exception& e) {
+    throw RunError("cannot write " + path + ": " + e.what());
+  }
+  if (!ok) throw RunError("cannot write " + path);
+  csv->file->Write(RowStamp(t_ns) + "," + name + "\n");
+}
+
+void EurocRecorder::AddFrame(const StereoFrame& frame) {
+  for (const cv::Mat* m : {&frame.left_rgb, &frame.right_rgb}) {
+    if (m->type() != CV_8UC3) throw RunError("EurocRecorder: stereo images must be CV_8UC3 (RGB)");
+  }
+  // Our images are RGB; OpenCV writes BGR.
+  cv::Mat bgr;
+  cv::cvtColor(frame.left_rgb, bgr, cv::COLOR_RGB2BGR);
+  WriteImage("cam0", &cam0_, frame.t_ns, bgr);
+  cv::cvtColor(frame.right_rgb, bgr, cv::COLOR_RGB2BGR);
+  WriteImage("cam1", &cam1_, frame.t_ns, bgr);
+
+  if (rig_.camera.depth && !frame.left_depth_m.empty()) {
+    if (frame.left_depth_m.type() != CV_32F) throw RunError("EurocRecorder: depth must be CV_32F (m)");
+    cv::Mat mm(frame.left_depth_m.size(), CV_16U);
+    for (int r = 0; r < mm.rows; ++r) {
+      const float* src = frame.left_depth_m.ptr<float>(r);
+      uint16_t* dst = mm.ptr<uint16_t>(r);
+      for (int c = 0; c < mm.cols; ++c) {
+        const double v = std::round(static_cast<double>(src[c]) / kDepthUnitM);
+        dst[c] = (std::isfinite(v) && v > 0 && v <= 65535) ? static_cast<uint16_t>(v) : 0;
+      }
+    }
+    WriteImage("depth0", &depth0_, frame.t_ns, mm);
+  }
+  if (rig_.camera.segmentation && !frame.left_instance_id.empty()) {
+    if (frame.left_instance_id.type() != CV_16U) throw RunError("EurocRecorder: instance ids must be CV_16U");
+    WriteImage("seg0", &seg0_, frame.t_ns, frame.left_instance_id);
+    for (const SegmentInstance& inst : frame.instances) {
+      instances_.insert({inst.id, CategoryName(inst.category), inst.name});
+    }
+  }
+}
+
+void EurocRecorder::AddImu(const ImuSample& s) {
+  CheckStamp(&imu0_, s.t_ns, "imu0");
+  std::string row = RowStamp(s.t_ns);
+  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.9g", s.gyro_i[i]);
+  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.9g", s.accel_i[i]);
+  imu0_.file->Write(row + "\n");
+}
+
+void EurocRecorder::AddJoints(const JointState& j) {
+  CheckStamp(&joints0_, j.t_ns, "joints0");
+  std::string row = RowStamp(j.t_ns);
+  for (double q : j.position_rad) row += "," + Fmt("%.9g", q);
+  for (double v : j.velocity_rad_s) row += "," + Fmt("%.9g", v);
+  for (bool c : j.contact) row += c ? ",1" : ",0";
+  joints0_.file->Write(row + "\n");
+}
+
+void EurocRecorder::AddGroundTruth(const GroundTruthState& g) {
+  CheckStamp(&gt0_, g.t_ns, "state_groundtruth_estimate0");
+  const Eigen::Vector3d& p = g.T_w_body.p_w_x;
+  const Eigen::Quaterniond q = g.T_w_body.q_w_x.normalized();
+  std::string row = RowStamp(g.t_ns);
+  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.9f", p[i]);
+  row += "," + Fmt("%.9f", q.w()) + "," + Fmt("%.9f", q.x()) + "," + Fmt("%.9f", q.y()) + "," +
+         Fmt("%.9f", q.z());
+  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.9f", g.vel_w_body[i]);
+  row += ",0,0,0,0,0,0";  // biases: not part of the ground truth state
+  gt0_.file->Write(row + "\n");
+}
+
+void EurocRecorder::WriteSensorFiles() const {
+  const std::string m = mav0_ + "/";
+  WriteFileAtomic(m + "body.yaml",
+                  "# The body frame is the IMU frame at the trunk centre: x forward, y left, z up.\n"
+                  "comment: viqu robot rat trunk\n");
+  WriteFileAtomic(m + "cam0/sensor.yaml",
+                  CameraYaml("viqu left camera (rectified, RGB PNG)", rig_.T_body_cam0, rig_, ""));
+  WriteFileAtomic(m + "cam1/sensor.yaml",
+                  CameraYaml("viqu right camera (rectified, RGB PNG)", rig_.T_body_cam1, rig_, ""));
+  if (rig_.camera.depth) {
+    WriteFileAtomic(m + "depth0/sensor.yaml",
+                    CameraYaml("viqu left camera metric depth along the optical axis",
+                               rig_.T_body_cam0, rig_,
+                               "\n# Depth images: 16-bit PNG, value * depth_unit_m = depth (m); 0 = no depth.\n"
+                               "encoding: 16UC1\ndepth_unit_m: " + Fmt("%.9g", kDepthUnitM) +
+                                   "\ninvalid_value: 0\n"));
+  }
+  if (rig_.camera.segmentation) {
+    WriteFileAtomic(m + "seg0/sensor.yaml",
+                    CameraYaml("viqu left camera instance segmentation", rig_.T_body_cam0, rig_,
+                               "\n# Segmentation images: 16-bit PNG of instance ids; 0 = static background.\n"
+                               "encoding: 16UC1\ninstances: instances.csv  # id, category, name\n"));
+    std::string csv = "#id,category,name\n";
+    for (const auto& inst : instances_) {
+      csv += std::to_string(std::get<0>(inst)) + "," + std::get<1>(inst) + "," + std::get<2>(inst) + "\n";
+    }
+    WriteFileAtomic(m + "seg0/instances.csv", csv);
+  }
+  const double imu_sqrt_rate = std::sqrt(rig_.imu.rate_hz);
+  WriteFileAtomic(
+      m + "imu0/sensor.yaml",
+      "# General sensor definitions.\nsensor_type: imu\ncomment: viqu simulated IMU at the trunk centre\n\n"
+      "# Sensor extrinsics wrt. the body-frame.\n" + TransformYaml(Eigen::Isometry3d::Identity()) +
+          "rate_hz: " + Fmt("%.9g", rig_.imu.rate_hz) + "\n\n"
+          "# inertial sensor noise model parameters (static)\n"
+          "gyroscope_noise_density: " + Fmt("%.9g", rig_.imu.gyro_noise / imu_sqrt_rate) +
+          "     # [ rad / s / sqrt(Hz) ]\n"
+          "gyroscope_random_walk: " + Fmt("%.9g", rig_.imu.gyro_bias_walk) + "       # [ rad / s^2 / sqrt(Hz) ]\n"
+          "accelerometer_noise_density: " + Fmt("%.9g", rig_.imu.accel_noise / imu_sqrt_rate) +
+          "  # [ m / s^2 / sqrt(Hz) ]\n"
+          "accelerometer_random_walk: " + Fmt("%.9g", rig_.imu.accel_bias_walk) + "   # [ m / s^3 / sqrt(Hz) ]\n");
+  std::string joint_list;
+  for (const char* j : kJointNames) joint_list += std::string(joint_list.empty() ? "" : ", ") + j;
+  WriteFileAtomic(m + "joints0/sensor.yaml",
+                  "sensor_type: joint_encoders\ncomment: viqu leg joint encoders and foot contact truth\n"
+                  "rate_hz: " + Fmt("%.9g", rig_.joints.rate_hz) + "\n"
+                  "joints: [" + joint_list + "]  # columns: positions (rad), then velocities (rad/s)\n"
+                  "feet: [FL, FR, BL, BR]  # contact columns (1 = touching)\n"
+                  "noise_rad: " + Fmt("%.9g", rig_.joints.noise_rad) + "\n"
+                  "resolution_rad: " + Fmt("%.9g", rig_.joints.resolution_rad) + "\n");
+  WriteFileAtomic(m + "state_groundtruth_estimate0/sensor.yaml",
+                  "sensor_type: visual-inertial\ncomment: ground truth of the body (IMU) frame in the world "
+                  "frame (z up), from the simulator; biases are written as 0\n");
+}
+
+void EurocRecorder::Finish() {
+  if (finished_) return;
+  WriteSensorFiles();
+  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &imu0_, &joints0_, &gt0_}) {
+    if (s->file) s->file->Commit();
+  }
+  // Swap the finished folder into place; an old dataset under the final name is replaced.
+  std::error_code ec;
+  const std::string old_dir = final_dir_ + ".old." + std::to_string(::getpid());
+  const bool had_old = fs::exists(final_dir_, ec);
+  if (had_old) {
+    fs::rename(final_dir_, old_dir, ec);
+    if (ec) throw RunError("cannot move the old " + final_dir_ + " aside: " + ec.message());
+  }
+  fs::rename(partial_dir_, final_dir_, ec);
+  if (ec) throw RunError("cannot rename " + partial_dir_ + " to " + final_dir_ + ": " + ec.message());
+  if (had_old) fs::remove_all(old_dir, ec);
+  finished_ = true;
+}
+
+}  // namespace viqu::sim

@@ -1,0 +1,84 @@
+#pragma once
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <set>
+#include <string>
+#include <tuple>
+
+#include <Eigen/Geometry>
+
+#include "common/atomic_output_file.h"
+#include "scenario/scenario.h"
+#include "slam/measurements/ground_truth_pose.h"
+#include "slam/measurements/imu_sample.h"
+#include "slam/measurements/joint_state.h"
+#include "slam/measurements/stereo_frame.h"
+
+namespace viqu::sim {
+
+// The rig that a recording describes in its sensor.yaml files.
+struct EurocRig {
+  CameraConfig camera;            // rate and resolution; depth/segmentation enable depth0/seg0
+  PinholeIntrinsics intrinsics;   // rectified pinhole intrinsics, the same for both cameras
+  Eigen::Isometry3d T_body_cam0 = Eigen::Isometry3d::Identity();  // left camera (optical) in body
+  Eigen::Isometry3d T_body_cam1 = Eigen::Isometry3d::Identity();  // right camera (optical) in body
+  ImuConfig imu;                  // rate and noise figures; the IMU frame is the body frame
+  JointsConfig joints;            // encoder rate and noise
+};
+
+// Records a run in the EuRoC MAV layout, which stereo(-inertial) SLAM systems read as is:
+//
+//   DATASET/mav0/body.yaml
+//   DATASET/mav0/cam0/{data/<t_ns>.png, data.csv, sensor.yaml}     left RGB
+//   DATASET/mav0/cam1/{data/<t_ns>.png, data.csv, sensor.yaml}     right RGB
+//   DATASET/mav0/depth0/{data/<t_ns>.png, data.csv, sensor.yaml}   left depth, 16-bit PNG, mm
+//   DATASET/mav0/seg0/{data/<t_ns>.png, data.csv, sensor.yaml, instances.csv}  left instance ids
+//   DATASET/mav0/imu0/{data.csv, sensor.yaml}
+//   DATASET/mav0/joints0/{data.csv, sensor.yaml}                   encoders and foot contacts
+//   DATASET/mav0/state_groundtruth_estimate0/{data.csv, sensor.yaml}  trunk (IMU) pose in world
+//
+// Everything is written under DATASET.partial/ (CSV files through temporary names) and renamed
+// onto DATASET by Finish(); destroyed without Finish(), the recorder removes DATASET.partial.
+// Timestamps of each stream must increase. Errors throw RunError.
+class EurocRecorder {
+ public:
+  // `dataset_dir` is the final folder (e.g. RUN/dataset); a stale DATASET.partial is replaced.
+  EurocRecorder(const std::string& dataset_dir, const EurocRig& rig);
+  ~EurocRecorder();
+  EurocRecorder(const EurocRecorder&) = delete;
+  EurocRecorder& operator=(const EurocRecorder&) = delete;
+
+  // Left/right RGB (CV_8UC3, RGB order), and depth/segmentation when present and enabled.
+  void AddFrame(const StereoFrame& frame);
+  void AddImu(const ImuSample& sample);
+  void AddJoints(const JointState& joints);
+  void AddGroundTruth(const GroundTruthState& state);
+  // Writes the sensor.yaml files, commits the CSV files and renames the folder into place.
+  void Finish();
+
+  const std::string& dataset_dir() const { return final_dir_; }
+  const std::string& partial_dir() const { return partial_dir_; }
+
+ private:
+  // One CSV file with the stamp of its last row.
+  struct CsvStream {
+    std::unique_ptr<AtomicOutputFile> file;  // data.csv under its temporary name
+    int64_t last_t_ns = std::numeric_limits<int64_t>::min();  // stamp of the last row (ns)
+  };
+  CsvStream OpenCsv(const std::string& folder, const std::string& header) const;
+  void CheckStamp(CsvStream* s, int64_t t_ns, const char* what) const;
+  void WriteImage(const std::string& folder, CsvStream* csv, int64_t t_ns, const cv::Mat& image);
+  void WriteSensorFiles() const;
+
+  std::string final_dir_;    // DATASET
+  std::string partial_dir_;  // DATASET.partial
+  std::string mav0_;         // DATASET.partial/mav0
+  EurocRig rig_;
+  CsvStream cam0_, cam1_, depth0_, seg0_, imu0_, joints0_, gt0_;
+  // Instances seen in the segmentation: (id, category, name), written to seg0/instances.csv.
+  std::set<std::tuple<uint16_t, std::string, std::string>> instances_;
+  bool finished_ = false;    // Finish() succeeded
+};
+
+}  // namespace viqu::sim

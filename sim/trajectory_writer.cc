@@ -1,0 +1,42 @@
+#include "sim/trajectory_writer.h"
+
+#include <cinttypes>
+#include <cstdio>
+
+namespace viqu::sim {
+
+std::string FormatSeconds(int64_t t_ns) {
+  const bool negative = t_ns < 0;
+  const uint64_t magnitude = negative ? 0 - static_cast<uint64_t>(t_ns) : static_cast<uint64_t>(t_ns);
+  char buf[48];
+  std::snprintf(buf, sizeof(buf), "%s%" PRIu64 ".%09" PRIu64, negative ? "-" : "",
+                magnitude / 1000000000u, magnitude % 1000000000u);
+  return buf;
+}
+
+TrajectoryWriter::TrajectoryWriter(const std::string& path)
+    : file_(std::make_unique<AtomicOutputFile>(path)) {
+  file_->Write("# timestamp tx ty tz qx qy qz qw\n");
+}
+
+void TrajectoryWriter::Add(const StampedPose& pose) {
+  const Eigen::Quaterniond q = pose.q_w_x.normalized();
+  const Eigen::Vector3d& p = pose.p_w_x;
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), " %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", p.x(), p.y(), p.z(), q.x(),
+                q.y(), q.z(), q.w());
+  file_->Write(FormatSeconds(pose.t_ns) + buf);
+  ++lines_;
+}
+
+void TrajectoryWriter::Add(int64_t t_ns, const Eigen::Isometry3d& T_w_x) {
+  StampedPose pose;
+  pose.t_ns = t_ns;
+  pose.q_w_x = Eigen::Quaterniond(T_w_x.rotation());
+  pose.p_w_x = T_w_x.translation();
+  Add(pose);
+}
+
+void TrajectoryWriter::Close() { file_->Commit(); }
+
+}  // namespace viqu::sim

@@ -1,0 +1,76 @@
+// TrajectoryWriter: TUM lines, exact timestamps, atomic output.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <Eigen/Geometry>
+
+#include "sim/trajectory_writer.h"
+
+namespace viqu::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+fs::path TempDir() {
+  std::string tmpl = (fs::temp_directory_path() / "viqu_traj_XXXXXX").string();
+  EXPECT_NE(::mkdtemp(tmpl.data()), nullptr);
+  return tmpl;
+}
+
+TEST(TrajectoryWriter, FormatsSecondsExactly) {
+  EXPECT_EQ(FormatSeconds(0), "0.000000000");
+  EXPECT_EQ(FormatSeconds(12345678901), "12.345678901");
+  EXPECT_EQ(FormatSeconds(50000000), "0.050000000");
+  EXPECT_EQ(FormatSeconds(-1500000000), "-1.500000000");
+}
+
+TEST(TrajectoryWriter, WritesTumLinesAndRenamesOnClose) {
+  const fs::path dir = TempDir();
+  const fs::path path = dir / "trajectory_gt.txt";
+  {
+    TrajectoryWriter w(path.string());
+    StampedPose p;
+    p.t_ns = 1050000000;
+    p.p_w_x = Eigen::Vector3d(1.0, -2.0, 0.07);
+    p.q_w_x = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+    w.Add(p);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(0.5, 0, 0);
+    w.Add(2000000000, T);
+    EXPECT_FALSE(fs::exists(path)) << "final name must not exist before Close()";
+    EXPECT_EQ(w.size(), 2u);
+    w.Close();
+  }
+  ASSERT_TRUE(fs::exists(path));
+  EXPECT_EQ(ReadAll(path),
+            "# timestamp tx ty tz qx qy qz qw\n"
+            "1.050000000 1.000000000 -2.000000000 0.070000000 0.000000000 0.000000000 0.707106781 0.707106781\n"
+            "2.000000000 0.500000000 0.000000000 0.000000000 0.000000000 0.000000000 0.000000000 1.000000000\n");
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
+  EXPECT_EQ(files, 1u) << "no temporary file may be left behind";
+  fs::remove_all(dir);
+}
+
+TEST(TrajectoryWriter, DestroyedWithoutCloseLeavesNothing) {
+  const fs::path dir = TempDir();
+  {
+    TrajectoryWriter w((dir / "trajectory_est.txt").string());
+    w.Add(StampedPose{});
+  }
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace viqu::sim
