@@ -57,8 +57,11 @@ std::string TerrainXml(const TerrainConfig& terrain) {
     const Slope& s = terrain.slopes[i];
     const std::string n = "terrain.slopes[" + std::to_string(i) + "]";
     Require(s.size[0] > 0 && s.size[1] > 0, n + ".size must be > 0");
-    Require(s.angle_deg > 0 && s.angle_deg <= 30, n + ".angle_deg must be in (0, 30]");
-    const double a = s.angle_deg * kPi / 180.0, yaw = s.yaw_deg * kPi / 180.0;
+    Require(s.angle_deg != 0 && std::abs(s.angle_deg) <= 30,
+            n + ".angle_deg must be in [-30, 30] and not 0, got " + Num(s.angle_deg));
+    // A negative angle descends along yaw_deg: the same ramp, rising the other way.
+    const double a = std::abs(s.angle_deg) * kPi / 180.0;
+    const double yaw = (s.yaw_deg + (s.angle_deg < 0 ? 180.0 : 0.0)) * kPi / 180.0;
     const double len = s.size[0];
     const Eigen::Vector3d dir(std::cos(yaw), std::sin(yaw), 0);
     // Top surface: starts at floor level at the low end and rises along dir; its horizontal

@@ -19,7 +19,8 @@ constexpr double kSlopeThickness_m = 0.2;     // thickness of a slope box, mostl
 
 // MJCF text (an <asset> and a <worldbody> section) with geoms `terrain_patch_N` (thin boxes with
 // the patch's friction) and `terrain_slope_N` (tilted boxes whose top surface starts at floor
-// level at the low end and rises at angle_deg along yaw_deg). Empty when there is no patch and
+// level at the low end and rises at angle_deg along yaw_deg; a negative angle descends along
+// yaw_deg, i.e. rises the opposite way). Empty when there is no patch and
 // no slope. Throws viqu::InputError on out-of-range values.
 std::string TerrainXml(const TerrainConfig& terrain);
 

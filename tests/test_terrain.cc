@@ -119,6 +119,15 @@ TEST(Terrain, RejectsOutOfRangeValues) {
   t = Example();
   t.slopes[0].angle_deg = 45;
   EXPECT_THROW(TerrainXml(t), InputError);
+  t.slopes[0].angle_deg = 0;
+  EXPECT_THROW(TerrainXml(t), InputError);
+}
+
+TEST(Terrain, NegativeAngleDescendsAlongYaw) {
+  TerrainConfig up, down;
+  up.slopes.push_back({{0.5, -0.5}, {1.0, 0.6}, 7.0, 200.0});
+  down.slopes.push_back({{0.5, -0.5}, {1.0, 0.6}, -7.0, 20.0});
+  EXPECT_EQ(TerrainXml(up), TerrainXml(down));
 }
 
 }  // namespace
