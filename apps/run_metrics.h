@@ -1,0 +1,27 @@
+#pragma once
+// Running statistics of a simulation run, and metrics.json from them.
+#include <string>
+#include <vector>
+
+#include "scenario/scenario.h"
+
+namespace viqu::app {
+
+struct RunMetrics {
+  double sim_time_s = 0;              // (s)
+  double wall_time_s = 0;             // (s)
+  double path_length_m = 0;           // horizontal path of the trunk (m)
+  bool fell = false;
+  std::vector<double> render_ms;      // per camera frame (ms)
+  int frames = 0;                     // camera frames produced
+  std::string steer_source = "ground_truth";
+  std::string renderer;               // EGL device description
+};
+
+double Median(std::vector<double> v);
+double Percentile(std::vector<double> v, double p);  // p in [0, 1]
+
+// The metrics.json text (DESIGN.md keys).
+std::string MetricsJson(const Scenario& s, const RunMetrics& m);
+
+}  // namespace viqu::app

@@ -1,0 +1,197 @@
+#include "apps/run_scenario.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <random>
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "apps/progress.h"
+#include "apps/robot_rig.h"
+#include "apps/run_metrics.h"
+#include "apps/sensor_clock.h"
+#include "common/atomic_file.h"
+#include "common/errors.h"
+#include "scenario/scenario_loader.h"
+#include "sim/camera_noise.h"
+#include "sim/encoder_model.h"
+#include "sim/euroc_recorder.h"
+#include "sim/imu_model.h"
+#include "sim/segmentation_model.h"
+#include "sim/stereo_renderer.h"
+#include "sim/trajectory_writer.h"
+
+namespace viqu::app {
+namespace {
+
+// Per-stream constants mixed into the scenario seed (docs/CONVENTIONS.md).
+constexpr uint64_t kStreamImu = 0x1111'0000'0000'0001ULL;
+constexpr uint64_t kStreamJoints = 0x2222'0000'0000'0002ULL;
+constexpr uint64_t kStreamCamera = 0x3333'0000'0000'0003ULL;
+constexpr uint64_t kStreamSegmentation = 0x4444'0000'0000'0004ULL;
+
+constexpr double kFallTiltRad = 60.0 * M_PI / 180.0;  // trunk tilt that counts as a fall
+
+// The sensor streams of one run: noise models and their clocks.
+struct Sensors {
+  explicit Sensors(const Scenario& s)
+      : imu(s.sensors.imu, s.seed ^ kStreamImu),
+        joints(s.sensors.joints, s.seed ^ kStreamJoints),
+        segmentation(s.sensors.segmentation, s.seed ^ kStreamSegmentation),
+        camera_rng(s.seed ^ kStreamCamera),
+        imu_clock(s.sensors.imu.rate_hz),
+        joint_clock(s.sensors.joints.rate_hz),
+        camera_clock(s.sensors.camera.rate_hz) {}
+  sim::ImuModel imu;
+  sim::EncoderModel joints;
+  sim::SegmentationModel segmentation;
+  std::mt19937_64 camera_rng;
+  SensorClock imu_clock, joint_clock, camera_clock;
+};
+
+// Writes video.mp4 of the left camera through a temporary name.
+class VideoOutput {
+ public:
+  VideoOutput(const std::string& path, double fps, int w, int h) : path_(path), tmp_(TempPathFor(path) + ".mp4") {
+    writer_.open(tmp_, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps, cv::Size(w, h));
+    if (!writer_.isOpened()) throw RunError("cannot open a video writer for " + path + " (OpenCV without an mp4 encoder?)");
+  }
+  ~VideoOutput() {
+    if (!done_) std::remove(tmp_.c_str());
+  }
+  void Add(const cv::Mat& rgb) {
+    cv::cvtColor(rgb, bgr_, cv::COLOR_RGB2BGR);
+    writer_.write(bgr_);
+  }
+  void Finish() {
+    writer_.release();
+    CommitTempFile(tmp_, path_);
+    done_ = true;
+  }
+
+ private:
+  std::string path_, tmp_;
+  cv::VideoWriter writer_;
+  cv::Mat bgr_;
+  bool done_ = false;
+};
+
+std::string ResolveOutDir(const Scenario& s, const RunOptions& opt) {
+  const std::string dir = opt.out_dir.empty() ? "runs/" + s.name : opt.out_dir;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw RunError("cannot create run folder " + dir + ": " + ec.message());
+  return dir;
+}
+
+sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const PinholeIntrinsics& k) {
+  sim::EurocRig rig;
+  rig.camera = s.sensors.camera;
+  rig.intrinsics = k;
+  rig.T_body_cam0 = w.T_body_cam(false);
+  rig.T_body_cam1 = w.T_body_cam(true);
+  rig.imu = s.sensors.imu;
+  rig.joints = s.sensors.joints;
+  return rig;
+}
+
+}  // namespace
+
+int RunScenario(const Scenario& s, const RunOptions& opt) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const std::string out = ResolveOutDir(s, opt);
+  WriteFileAtomic(out + "/scenario.yaml", ScenarioToYaml(s));
+
+  RobotRig rig(s);
+  sim::World& world = rig.world();
+  sim::RenderOptions ropt;
+  ropt.width = s.sensors.camera.width;
+  ropt.height = s.sensors.camera.height;
+  ropt.depth = s.sensors.camera.depth;
+  ropt.segmentation = s.sensors.camera.segmentation;
+  sim::StereoRenderer renderer(world.model(), ropt);
+  Sensors sensors(s);
+
+  RunMetrics metrics;
+  metrics.renderer = renderer.device_description();
+  if (s.robot.command.follow == "estimate") {
+    std::fprintf(stderr, "viqu: warning: robot.command.follow is 'estimate' but the SLAM estimator is not "
+                         "part of this build yet; steering by ground truth\n");
+  }
+  if (opt.slam) {
+    std::fprintf(stderr, "viqu: note: live SLAM is not implemented yet; running the simulation only "
+                         "(same as --no-slam)\n");
+  }
+
+  std::unique_ptr<sim::EurocRecorder> recorder;
+  if (opt.record) {
+    recorder = std::make_unique<sim::EurocRecorder>(out + "/dataset", MakeEurocRig(s, world, renderer.intrinsics()));
+  }
+  std::unique_ptr<VideoOutput> video;
+  if (opt.video) {
+    video = std::make_unique<VideoOutput>(out + "/video.mp4", s.sensors.camera.rate_hz, ropt.width, ropt.height);
+  }
+  sim::TrajectoryWriter gt_out(out + "/trajectory_gt.txt");
+
+  ProgressLine progress(s.duration_s);
+  const int64_t end_ns = std::llround(s.duration_s * 1e9);
+  Eigen::Vector3d last_p = world.GroundTruth().T_w_body.p_w_x;
+  StereoFrame frame;
+  while (true) {
+    const int64_t t_ns = world.time_ns();
+    if (sensors.imu_clock.Due(t_ns)) {
+      const ImuSample imu = sensors.imu.Measure(t_ns, world.TrueAccel(), world.TrueGyro());
+      if (recorder) recorder->AddImu(imu);
+    }
+    if (sensors.joint_clock.Due(t_ns)) {
+      const JointState js = sensors.joints.Measure(t_ns, world.JointPositions(), world.JointVelocities(),
+                                                   world.FootContacts());
+      if (recorder) recorder->AddJoints(js);
+    }
+    if (sensors.camera_clock.Due(t_ns)) {
+      const auto r0 = std::chrono::steady_clock::now();
+      renderer.Render(world.model(), world.data(), &frame);
+      metrics.render_ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count());
+      sim::AddPixelNoise(&frame.left_rgb, s.sensors.camera.noise_std, &sensors.camera_rng);
+      sim::AddPixelNoise(&frame.right_rgb, s.sensors.camera.noise_std, &sensors.camera_rng);
+      if (!frame.left_instance_id.empty()) sensors.segmentation.Apply(&frame);
+      const GroundTruthState gt = world.GroundTruth();
+      gt_out.Add(gt.T_w_cam);
+      metrics.path_length_m += (gt.T_w_body.p_w_x - last_p).head<2>().norm();
+      last_p = gt.T_w_body.p_w_x;
+      ++metrics.frames;
+      if (recorder) {
+        recorder->AddFrame(frame);
+        recorder->AddGroundTruth(gt);
+      }
+      if (video) video->Add(frame.left_rgb);
+    }
+    if (world.TrunkTiltRad() > kFallTiltRad || world.TrunkTouchesGround()) metrics.fell = true;
+    if (t_ns >= end_ns || (metrics.fell && !s.robot.allow_fall)) break;
+    rig.Step(rig.TruePose2());
+    progress.Update(world.data()->time);
+  }
+  progress.Finish();
+
+  gt_out.Close();
+  if (recorder) recorder->Finish();
+  if (video) video->Finish();
+  metrics.sim_time_s = world.data()->time;
+  metrics.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  WriteFileAtomic(out + "/metrics.json", MetricsJson(s, metrics));
+
+  std::printf("viqu run %s: %.1f s simulated in %.1f s (real-time factor %.2fx), path %.2f m, %d frames, "
+              "render %.1f ms median%s\n",
+              s.name.c_str(), metrics.sim_time_s, metrics.wall_time_s, metrics.sim_time_s / metrics.wall_time_s,
+              metrics.path_length_m, metrics.frames, Median(metrics.render_ms), metrics.fell ? ", ROBOT FELL" : "");
+  std::printf("outputs: %s/{scenario.yaml,trajectory_gt.txt,metrics.json%s%s}\n", out.c_str(),
+              recorder ? ",dataset/" : "", video ? ",video.mp4" : "");
+  return metrics.fell && !s.robot.allow_fall ? 1 : 0;
+}
+
+}  // namespace viqu::app
