@@ -1,0 +1,68 @@
+// The `viqu` command-line program: parses the command line, loads the inputs and hands them to
+// the libraries. Exit codes (DESIGN.md): 0 ok, 1 run failed, 2 bad input or usage.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "apps/cli.h"
+#include "apps/run_options.h"
+#include "apps/run_scenario.h"
+#include "apps/usage_error.h"
+#include "common/errors.h"
+#include "scenario/scenario_loader.h"
+
+namespace viqu::app {
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitRunFailed = 1;
+constexpr int kExitBadInput = 2;
+
+int NotImplemented(const std::string& command) {
+  std::fprintf(stderr, "viqu: '%s' is not implemented yet\n", command.c_str());
+  return kExitBadInput;
+}
+
+int Run(const RunArgs& args) {
+  const Scenario scenario = LoadScenario(args.scenario, args.sets);
+  RunOptions options = args.options;
+  if (options.out_dir.empty()) options.out_dir = "runs/" + scenario.name;
+  return RunScenario(scenario, options);
+}
+
+int Dispatch(const CliArgs& args) {
+  switch (args.command) {
+    case Command::kHelp:
+      std::fputs(UsageText(args.help_topic).c_str(), stdout);
+      return kExitOk;
+    case Command::kRun: return Run(args.run);
+    case Command::kSlam: return NotImplemented("slam");
+    case Command::kEval: return NotImplemented("eval");
+    case Command::kSweep: return NotImplemented("sweep");
+    case Command::kView: return NotImplemented("view");
+  }
+  return kExitBadInput;
+}
+
+int Main(int argc, const char* const argv[]) {
+  try {
+    return Dispatch(ParseCommandLine(argc, argv));
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "viqu: %s\n\n%s", e.what(), UsageText().c_str());
+    return kExitBadInput;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "viqu: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const RunError& e) {
+    std::fprintf(stderr, "viqu: run failed: %s\n", e.what());
+    return kExitRunFailed;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "viqu: internal error: %s\n", e.what());
+    return kExitRunFailed;
+  }
+}
+
+}  // namespace
+}  // namespace viqu::app
+
+int main(int argc, char** argv) { return viqu::app::Main(argc, argv); }

@@ -1,0 +1,273 @@
+#include "apps/cli.h"
+
+#include <cstdlib>
+#include <utility>
+
+#include "apps/usage_error.h"
+
+namespace viqu::app {
+namespace {
+
+const char* const kRunUsage =
+    "viqu run SCENARIO.yaml [--out DIR] [--set key.path=value ...] [--no-slam] [--record] [--video]\n"
+    "    simulate the scenario, run SLAM live and write the run folder (default runs/NAME)\n"
+    "    --out DIR        run folder\n"
+    "    --set K=V        override a scenario key (repeatable), e.g. --set sensors.camera.rate_hz=10\n"
+    "    --no-slam        simulate and record ground truth only\n"
+    "    --record         also write an EuRoC-layout dataset under DIR/dataset\n"
+    "    --video          also write DIR/video.mp4\n";
+const char* const kSlamUsage =
+    "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR]\n"
+    "    replay a recorded run folder or a public dataset through SLAM\n";
+const char* const kEvalUsage =
+    "viqu eval EST.txt GT.txt [--json]\n"
+    "    ATE/RPE of two TUM-format trajectories\n";
+const char* const kSweepUsage =
+    "viqu sweep SWEEP.yaml [--jobs N]\n"
+    "    run a parameter grid over scenarios, one process per point\n";
+const char* const kViewUsage =
+    "viqu view SCENARIO.yaml [--set key.path=value ...]\n"
+    "    show the scenario in a window (GLFW)\n";
+
+// Walks over one subcommand's arguments: options (with values) and positionals.
+class ArgCursor {
+ public:
+  ArgCursor(int argc, const char* const argv[], int first, std::string command)
+      : argc_(argc), argv_(argv), i_(first), command_(std::move(command)) {}
+
+  bool Done() const { return i_ >= argc_; }
+  // The next argument; for "--name=value" splits off the value (see TakeValue).
+  std::string Next() {
+    std::string arg = argv_[i_++];
+    pending_value_.clear();
+    has_pending_ = false;
+    if (arg.size() > 2 && arg.compare(0, 2, "--") == 0) {
+      const size_t eq = arg.find('=');
+      if (eq != std::string::npos) {
+        pending_value_ = arg.substr(eq + 1);
+        has_pending_ = true;
+        arg = arg.substr(0, eq);
+      }
+    }
+    return arg;
+  }
+  // The value of the option just read by Next().
+  std::string TakeValue(const std::string& option) {
+    if (has_pending_) {
+      has_pending_ = false;
+      return pending_value_;
+    }
+    if (i_ >= argc_) throw UsageError(command_ + ": option " + option + " needs a value");
+    return argv_[i_++];
+  }
+  // Rejects "--flag=value" for options that take no value.
+  void NoValue(const std::string& option) const {
+    if (has_pending_) throw UsageError(command_ + ": option " + option + " takes no value");
+  }
+
+ private:
+  int argc_;
+  const char* const* argv_;
+  int i_;                      // next argument to read
+  std::string command_;        // subcommand, for messages
+  std::string pending_value_;  // value given as --name=value
+  bool has_pending_ = false;
+};
+
+bool IsOption(const std::string& arg) { return arg.size() > 1 && arg[0] == '-'; }
+
+[[noreturn]] void UnknownOption(const std::string& command, const std::string& option) {
+  throw UsageError(command + ": unknown option " + option);
+}
+
+// Checks the positional count.
+void ExpectPositionals(const std::string& command, const std::vector<std::string>& got,
+                       size_t want, const std::string& names) {
+  if (got.size() < want) throw UsageError(command + ": missing " + names);
+  if (got.size() > want) throw UsageError(command + ": unexpected argument '" + got[want] + "'");
+}
+
+void CheckSet(const std::string& command, const std::string& value) {
+  const size_t eq = value.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw UsageError(command + ": --set expects key.path=value, got '" + value + "'");
+  }
+}
+
+RunArgs ParseRun(ArgCursor* c) {
+  RunArgs a;
+  std::vector<std::string> pos;
+  while (!c->Done()) {
+    const std::string arg = c->Next();
+    if (!IsOption(arg)) {
+      pos.push_back(arg);
+    } else if (arg == "--out") {
+      a.options.out_dir = c->TakeValue(arg);
+    } else if (arg == "--set") {
+      a.sets.push_back(c->TakeValue(arg));
+      CheckSet("run", a.sets.back());
+    } else if (arg == "--no-slam") {
+      c->NoValue(arg);
+      a.options.slam = false;
+    } else if (arg == "--record") {
+      c->NoValue(arg);
+      a.options.record = true;
+    } else if (arg == "--video") {
+      c->NoValue(arg);
+      a.options.video = true;
+    } else {
+      UnknownOption("run", arg);
+    }
+  }
+  ExpectPositionals("run", pos, 1, "SCENARIO.yaml");
+  a.scenario = pos[0];
+  return a;
+}
+
+SlamArgs ParseSlam(ArgCursor* c) {
+  SlamArgs a;
+  std::vector<std::string> pos;
+  while (!c->Done()) {
+    const std::string arg = c->Next();
+    if (!IsOption(arg)) {
+      pos.push_back(arg);
+    } else if (arg == "--format") {
+      a.format = c->TakeValue(arg);
+      if (a.format != "viqu" && a.format != "euroc" && a.format != "tum") {
+        throw UsageError("slam: --format expects viqu, euroc or tum, got '" + a.format + "'");
+      }
+    } else if (arg == "--config") {
+      a.config = c->TakeValue(arg);
+    } else if (arg == "--out") {
+      a.out_dir = c->TakeValue(arg);
+    } else {
+      UnknownOption("slam", arg);
+    }
+  }
+  ExpectPositionals("slam", pos, 1, "DATASET_DIR");
+  a.dataset_dir = pos[0];
+  return a;
+}
+
+EvalArgs ParseEval(ArgCursor* c) {
+  EvalArgs a;
+  std::vector<std::string> pos;
+  while (!c->Done()) {
+    const std::string arg = c->Next();
+    if (!IsOption(arg)) {
+      pos.push_back(arg);
+    } else if (arg == "--json") {
+      c->NoValue(arg);
+      a.json = true;
+    } else {
+      UnknownOption("eval", arg);
+    }
+  }
+  ExpectPositionals("eval", pos, 2, pos.empty() ? "EST.txt and GT.txt" : "GT.txt");
+  a.estimate = pos[0];
+  a.ground_truth = pos[1];
+  return a;
+}
+
+SweepArgs ParseSweep(ArgCursor* c) {
+  SweepArgs a;
+  std::vector<std::string> pos;
+  while (!c->Done()) {
+    const std::string arg = c->Next();
+    if (!IsOption(arg)) {
+      pos.push_back(arg);
+    } else if (arg == "--jobs") {
+      const std::string v = c->TakeValue(arg);
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0' || n < 1 || n > 1024) {
+        throw UsageError("sweep: --jobs expects a whole number from 1 to 1024, got '" + v + "'");
+      }
+      a.jobs = static_cast<int>(n);
+    } else {
+      UnknownOption("sweep", arg);
+    }
+  }
+  ExpectPositionals("sweep", pos, 1, "SWEEP.yaml");
+  a.sweep_file = pos[0];
+  return a;
+}
+
+ViewArgs ParseView(ArgCursor* c) {
+  ViewArgs a;
+  std::vector<std::string> pos;
+  while (!c->Done()) {
+    const std::string arg = c->Next();
+    if (!IsOption(arg)) {
+      pos.push_back(arg);
+    } else if (arg == "--set") {
+      a.sets.push_back(c->TakeValue(arg));
+      CheckSet("view", a.sets.back());
+    } else {
+      UnknownOption("view", arg);
+    }
+  }
+  ExpectPositionals("view", pos, 1, "SCENARIO.yaml");
+  a.scenario = pos[0];
+  return a;
+}
+
+}  // namespace
+
+CliArgs ParseCommandLine(int argc, const char* const argv[]) {
+  CliArgs args;
+  if (argc < 2) throw UsageError("missing command");
+  const std::string command = argv[1];
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "-h" || arg == "--help") {
+      args.command = Command::kHelp;
+      const bool known = command == "run" || command == "slam" || command == "eval" ||
+                         command == "sweep" || command == "view";
+      args.help_topic = known ? command : "";
+      return args;
+    }
+  }
+  if (command == "help") {
+    args.command = Command::kHelp;
+    if (argc > 2) args.help_topic = argv[2];
+    if (!args.help_topic.empty() && UsageText(args.help_topic).empty()) {
+      throw UsageError("help: unknown command '" + args.help_topic + "'");
+    }
+    return args;
+  }
+  ArgCursor cursor(argc, argv, 2, command);
+  if (command == "run") {
+    args.command = Command::kRun;
+    args.run = ParseRun(&cursor);
+  } else if (command == "slam") {
+    args.command = Command::kSlam;
+    args.slam = ParseSlam(&cursor);
+  } else if (command == "eval") {
+    args.command = Command::kEval;
+    args.eval = ParseEval(&cursor);
+  } else if (command == "sweep") {
+    args.command = Command::kSweep;
+    args.sweep = ParseSweep(&cursor);
+  } else if (command == "view") {
+    args.command = Command::kView;
+    args.view = ParseView(&cursor);
+  } else {
+    throw UsageError("unknown command '" + command + "'");
+  }
+  return args;
+}
+
+std::string UsageText(const std::string& topic) {
+  if (topic == "run") return std::string("usage: ") + kRunUsage;
+  if (topic == "slam") return std::string("usage: ") + kSlamUsage;
+  if (topic == "eval") return std::string("usage: ") + kEvalUsage;
+  if (topic == "sweep") return std::string("usage: ") + kSweepUsage;
+  if (topic == "view") return std::string("usage: ") + kViewUsage;
+  if (!topic.empty()) return "";
+  return std::string("usage: viqu COMMAND [ARGS]   (viqu COMMAND --help for details)\n\n") + kRunUsage +
+         kSlamUsage + kEvalUsage + kSweepUsage + kViewUsage +
+         "\nexit codes: 0 ok, 1 run failed, 2 bad input or usage\n";
+}
+
+}  // namespace viqu::app

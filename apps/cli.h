@@ -1,0 +1,64 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "apps/run_options.h"
+
+namespace viqu::app {
+
+// `viqu run SCENARIO.yaml [--out DIR] [--set key.path=value ...] [--no-slam] [--record] [--video]`
+struct RunArgs {
+  std::string scenario;           // scenario YAML path
+  std::vector<std::string> sets;  // "key.path=value" overrides, in command-line order
+  RunOptions options;             // out_dir empty when --out was not given
+};
+
+// `viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR]`
+struct SlamArgs {
+  std::string dataset_dir;        // recorded run folder or public dataset
+  std::string format = "viqu";    // viqu | euroc | tum
+  std::string config;             // SLAM settings file; empty = slam/config/default.yaml
+  std::string out_dir;            // empty when --out was not given
+};
+
+// `viqu eval EST.txt GT.txt [--json]`
+struct EvalArgs {
+  std::string estimate;           // TUM trajectory to evaluate
+  std::string ground_truth;       // TUM reference trajectory
+  bool json = false;              // print one JSON object instead of text
+};
+
+// `viqu sweep SWEEP.yaml [--jobs N]`
+struct SweepArgs {
+  std::string sweep_file;         // sweep manifest YAML
+  int jobs = 1;                   // parallel processes (>= 1)
+};
+
+// `viqu view SCENARIO.yaml [--set key.path=value ...]`
+struct ViewArgs {
+  std::string scenario;           // scenario YAML path
+  std::vector<std::string> sets;  // overrides, as for run
+};
+
+enum class Command { kHelp, kRun, kSlam, kEval, kSweep, kView };
+
+// The parsed command line; only the member of `command` is filled in.
+struct CliArgs {
+  Command command = Command::kHelp;
+  std::string help_topic;         // kHelp: "" for the overview, else a subcommand name
+  RunArgs run;
+  SlamArgs slam;
+  EvalArgs eval;
+  SweepArgs sweep;
+  ViewArgs view;
+};
+
+// Parses argv (argv[0] is the program). Options take their value as the next argument or
+// after '=' ("--out DIR", "--out=DIR"). `-h`/`--help` anywhere asks for help. Throws
+// UsageError on anything malformed.
+CliArgs ParseCommandLine(int argc, const char* const argv[]);
+
+// Usage text: the overview for an empty topic, else that subcommand's.
+std::string UsageText(const std::string& topic = "");
+
+}  // namespace viqu::app

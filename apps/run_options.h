@@ -1,0 +1,14 @@
+#pragma once
+#include <string>
+
+namespace viqu::app {
+
+// What `viqu run` was asked to produce, besides the scenario itself.
+struct RunOptions {
+  std::string out_dir;  // run folder (created if missing); the CLI fills in runs/<scenario name>
+  bool slam = true;     // run the SLAM estimator live (--no-slam turns it off)
+  bool record = false;  // write the EuRoC-layout dataset under out_dir/dataset (--record)
+  bool video = false;   // write out_dir/video.mp4 (--video)
+};
+
+}  // namespace viqu::app
