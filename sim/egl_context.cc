@@ -144,7 +144,7 @@ std::string DeviceLabel(EGLDeviceEXT device, PFNEGLQUERYDEVICESTRINGEXTPROC quer
 
 }  // namespace
 
-std::unique_ptr<EglContext> EglContext::Create() {
+std::unique_ptr<EglContext> EglContext::Create(Platform platform) {
   std::ostringstream log;
   const char* client_ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!client_ext) eglGetError();  // EGL 1.4 without client extensions: handled below
@@ -153,8 +153,10 @@ std::unique_ptr<EglContext> EglContext::Create() {
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   const bool has_platform_base = HasExtension(client_ext, "EGL_EXT_platform_base") && get_platform_display;
 
-  // 1. EGL device platform: every device, hardware first as EGL lists them.
-  if (!has_platform_base || !HasExtension(client_ext, "EGL_EXT_platform_device")) {
+  // 1. EGL device platform: every device, in the order EGL lists them.
+  if (platform == Platform::kSurfaceless) {
+    log << "  EGL device platform: not asked for\n";
+  } else if (!has_platform_base || !HasExtension(client_ext, "EGL_EXT_platform_device")) {
     log << "  EGL device platform: not offered (client extensions: "
         << (client_ext ? client_ext : "none") << ")\n";
   } else {
@@ -181,7 +183,9 @@ std::unique_ptr<EglContext> EglContext::Create() {
   }
 
   // 2. Mesa's surfaceless platform.
-  if (!has_platform_base || !HasExtension(client_ext, "EGL_MESA_platform_surfaceless")) {
+  if (platform == Platform::kDevice) {
+    log << "  Mesa surfaceless platform: not asked for\n";
+  } else if (!has_platform_base || !HasExtension(client_ext, "EGL_MESA_platform_surfaceless")) {
     log << "  Mesa surfaceless platform: not offered\n";
   } else {
     const std::string what = "Mesa surfaceless platform";

@@ -14,8 +14,15 @@ namespace viqu::sim {
 // one thread at a time (MakeCurrent binds it to the calling thread).
 class EglContext {
  public:
+  // Which EGL platforms Create() may use.
+  enum class Platform {
+    kAuto,         // device platform first, then Mesa surfaceless
+    kDevice,       // only the EGL device platform
+    kSurfaceless,  // only Mesa's surfaceless platform
+  };
+
   // Throws viqu::RunError naming every platform/device tried and the EGL error codes.
-  static std::unique_ptr<EglContext> Create();
+  static std::unique_ptr<EglContext> Create(Platform platform = Platform::kAuto);
 
   ~EglContext();
   EglContext(const EglContext&) = delete;

@@ -71,22 +71,24 @@ double RectifiedBaselineOrThrow(const mjModel* m, int left, int right) {
   return baseline;
 }
 
-// Sets the scene flags back when a segmentation pass ends, also when it throws.
+// Switches the scene to ID-colour segmentation for one pass, with the effects that only cost
+// time there (shadow maps, reflections, skybox, haze, fog) off; restores every flag when the
+// pass ends, also when it throws.
 class SegmentationFlags {
  public:
   explicit SegmentationFlags(mjvScene* scn) : scn_(scn) {
+    std::copy(std::begin(scn_->flags), std::end(scn_->flags), saved_);
+    for (int f : {mjRND_SHADOW, mjRND_REFLECTION, mjRND_SKYBOX, mjRND_HAZE, mjRND_FOG}) scn_->flags[f] = 0;
     scn_->flags[mjRND_SEGMENT] = 1;
     scn_->flags[mjRND_IDCOLOR] = 1;
   }
-  ~SegmentationFlags() {
-    scn_->flags[mjRND_SEGMENT] = 0;
-    scn_->flags[mjRND_IDCOLOR] = 0;
-  }
+  ~SegmentationFlags() { std::copy(std::begin(saved_), std::end(saved_), scn_->flags); }
   SegmentationFlags(const SegmentationFlags&) = delete;
   SegmentationFlags& operator=(const SegmentationFlags&) = delete;
 
  private:
   mjvScene* scn_;
+  mjtByte saved_[mjNRNDFLAG];  // the flags before the pass
 };
 
 }  // namespace
@@ -119,7 +121,7 @@ StereoRenderer::StereoRenderer(const mjModel* m, const RenderOptions& opt) : opt
                    " m, far " + std::to_string(z_far_) + " m");
   }
 
-  egl_ = EglContext::Create();
+  egl_ = EglContext::Create(opt_.egl_platform);
 
   mjv_defaultScene(&scn_);
   mjv_defaultOption(&vopt_);

@@ -34,6 +34,7 @@ struct RenderOptions {
   // default 4). Default 0: 4x MSAA makes a software-rendered 640x480 stereo frame about 2.5x
   // slower, and its depth comes from one sample off the pixel centre (bench/bench_render.cc).
   int multisamples = 0;
+  EglContext::Platform egl_platform = EglContext::Platform::kAuto;  // where to get the GL context
 };
 
 // Renders stereo frames of a model. Owns its EGL context, MuJoCo scene and render context.

@@ -405,6 +405,31 @@ TEST(RendererNearTest, LowCameraSeesTheFloorAtItsFeet) {
   EXPECT_TRUE(TakeMujocoWarnings().empty());
 }
 
+// Both EGL platforms give a working context on this machine's Mesa; the renderer on the
+// surfaceless fallback draws the same scene as on the device platform.
+TEST(EglContextTest, DevicePlatformAndSurfacelessFallbackBothWork) {
+  const auto device = EglContext::Create(EglContext::Platform::kDevice);
+  EXPECT_NE(device->Description().find("device platform"), std::string::npos) << device->Description();
+  const auto surfaceless = EglContext::Create(EglContext::Platform::kSurfaceless);
+  EXPECT_NE(surfaceless->Description().find("surfaceless"), std::string::npos) << surfaceless->Description();
+  std::printf("EGL: %s | %s\n", device->Description().c_str(), surfaceless->Description().c_str());
+
+  ModelPtr m = LoadModelString(kSceneXml, "render_test scene");
+  DataPtr d(mj_makeData(m.get()));
+  mj_forward(m.get(), d.get());
+  RenderOptions opt;
+  StereoFrame frames[2];
+  int i = 0;
+  for (auto platform : {EglContext::Platform::kDevice, EglContext::Platform::kSurfaceless}) {
+    opt.egl_platform = platform;
+    StereoRenderer r(m.get(), opt);
+    r.Render(m.get(), d.get(), &frames[i++]);
+  }
+  EXPECT_EQ(cv::norm(frames[0].left_instance_id, frames[1].left_instance_id, cv::NORM_INF), 0.0);
+  EXPECT_LT(cv::norm(frames[0].left_rgb, frames[1].left_rgb, cv::NORM_L1) / frames[0].left_rgb.total(), 1.0);
+  EXPECT_TRUE(TakeMujocoWarnings().empty());
+}
+
 TEST(RendererSetupTest, RejectsMissingCameraAndOversizedImages) {
   const std::string no_right = R"(<mujoco><worldbody>
       <camera name="cam_left" pos="0 0 1"/><geom type="sphere" size="0.1"/></worldbody></mujoco>)";
