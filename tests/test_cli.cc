@@ -1,4 +1,9 @@
 // Command-line parsing of every subcommand of DESIGN.md.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -103,6 +108,49 @@ TEST(Cli, UsageErrors) {
   EXPECT_EQ(UsageErrorOf({"sweep", "s.yaml", "--jobs", "0"}),
             "sweep: --jobs expects a whole number from 1 to 1024, got '0'");
   EXPECT_EQ(UsageErrorOf({"help", "fly"}), "help: unknown command 'fly'");
+}
+
+// The program's exit codes and messages (DESIGN.md): 0 ok, 2 bad input or usage.
+struct ProgramResult {
+  int exit_code = -1;  // process exit status
+  std::string output;  // stdout and stderr together
+};
+
+ProgramResult RunViqu(const std::string& args) {
+  ProgramResult r;
+  const std::string cmd = std::string(VIQU_BINARY_DIR) + "/apps/viqu " + args + " 2>&1";
+  std::FILE* p = ::popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  char buf[512];
+  for (size_t n; (n = std::fread(buf, 1, sizeof(buf), p)) > 0;) r.output.append(buf, n);
+  const int status = ::pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+TEST(CliProgram, ExitCodesAndMessages) {
+  if (!std::filesystem::exists(std::string(VIQU_BINARY_DIR) + "/apps/viqu")) {
+    GTEST_SKIP() << "the viqu program is not built";
+  }
+  EXPECT_EQ(RunViqu("--help").exit_code, 0);
+  const ProgramResult none = RunViqu("");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.output.find("usage: viqu COMMAND"), std::string::npos) << none.output;
+  const ProgramResult missing = RunViqu("run /nonexistent/scenario.yaml");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(missing.output, "viqu: /nonexistent/scenario.yaml: file not found\n");
+
+  const std::string dir = ::testing::TempDir() + "viqu_cli_bad";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/bad.yaml") << "name: x\nworld: [oops\n";
+  const ProgramResult malformed = RunViqu("run " + dir + "/bad.yaml");
+  EXPECT_EQ(malformed.exit_code, 2);
+  EXPECT_EQ(malformed.output.rfind("viqu: " + dir + "/bad.yaml:3:1: YAML syntax error", 0), 0u) << malformed.output;
+  std::filesystem::remove_all(dir);
+
+  const ProgramResult later = RunViqu("sweep s.yaml --jobs 2");
+  EXPECT_EQ(later.exit_code, 2);
+  EXPECT_EQ(later.output, "viqu: 'sweep' is not implemented yet\n");
 }
 
 }  // namespace

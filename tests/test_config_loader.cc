@@ -1,4 +1,5 @@
 // Strict scenario loading: defaults, file:line:column errors, --set overrides, round trip.
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -429,6 +430,32 @@ TEST_F(ConfigLoaderTest, ScenarioToYamlRoundTrip) {
   // Defaults round-trip too.
   const Scenario minimal = LoadScenario(Write("scen.yaml", kMinimal));
   ExpectSameScenario(minimal, LoadScenario(Write("elsewhere/minimal.yaml", ScenarioToYaml(minimal))));
+}
+
+// Every scenario shipped in scenarios/ loads, and its resolved form loads back to the same.
+TEST(ShippedScenarios, AllLoadAndRoundTrip) {
+  const fs::path dir = fs::path(VIQU_SOURCE_DIR) / "scenarios";
+  if (!fs::is_directory(dir)) GTEST_SKIP() << "no scenarios/ folder";
+  std::string tmpl = (fs::temp_directory_path() / "viqu_shipped_XXXXXX").string();
+  ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
+  size_t count = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    Scenario s;
+    try {
+      s = LoadScenario(entry.path().string());
+    } catch (const InputError& e) {
+      ADD_FAILURE() << e.what();
+      continue;
+    }
+    const fs::path copy = fs::path(tmpl) / entry.path().filename();
+    std::ofstream(copy) << ScenarioToYaml(s);
+    EXPECT_EQ(ScenarioToYaml(LoadScenario(copy.string())), ScenarioToYaml(s));
+    ++count;
+  }
+  fs::remove_all(tmpl);
+  std::printf("loaded %zu shipped scenarios\n", count);
 }
 
 }  // namespace
