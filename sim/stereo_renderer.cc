@@ -105,6 +105,9 @@ StereoRenderer::StereoRenderer(const mjModel* m, const RenderOptions& opt) : opt
                    std::to_string(m->vis.global.offwidth) + "x" + std::to_string(m->vis.global.offheight) +
                    " px; raise <visual><global offwidth=.. offheight=../>");
   }
+  nbody_ = m->nbody;
+  ngeom_ = m->ngeom;
+  ncam_ = m->ncam;
   cam_left_ = CameraIdOrThrow(m, kLeftCamera);
   cam_right_ = CameraIdOrThrow(m, kRightCamera);
   const double fovy_deg = m->cam_fovy[cam_left_];
@@ -224,6 +227,9 @@ cv::Mat FlipRgb(const std::vector<unsigned char>& rgb, int width, int height) {
 }  // namespace
 
 void StereoRenderer::Render(const mjModel* m, mjData* d, StereoFrame* out) {
+  if (m->nbody != nbody_ || m->ngeom != ngeom_ || m->ncam != ncam_) {
+    throw RunError("stereo renderer: Render got another model than the one it was made for");
+  }
   egl_->MakeCurrent();
   mjr_setBuffer(mjFB_OFFSCREEN, &con_);
   const int w = opt_.width, h = opt_.height;

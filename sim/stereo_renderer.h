@@ -80,6 +80,7 @@ class StereoRenderer {
   void SetClipPlanes();
 
   RenderOptions opt_;
+  int nbody_ = 0, ngeom_ = 0, ncam_ = 0;  // sizes of the model this renderer was made for
   int cam_left_ = -1, cam_right_ = -1;  // camera ids in the model
   PinholeIntrinsics intrinsics_;
   double baseline_m_ = 0;               // (m)
