@@ -196,7 +196,8 @@ void EurocRecorder::AddJoints(const JointState& j) {
 void EurocRecorder::AddGroundTruth(const GroundTruthState& g) {
   CheckStamp(&gt0_, g.t_ns, "state_groundtruth_estimate0");
   const Eigen::Vector3d& p = g.T_w_body.p_w_x;
-  const Eigen::Quaterniond q = g.T_w_body.q_w_x.normalized();
+  Eigen::Quaterniond q = g.T_w_body.q_w_x.normalized();
+  if (q.w() < 0) q.coeffs() = -q.coeffs();  // one sign for the whole file
   std::string row = RowStamp(g.t_ns);
   for (int i = 0; i < 3; ++i) row += "," + Fmt("%.9f", p[i]);
   row += "," + Fmt("%.9f", q.w()) + "," + Fmt("%.9f", q.x()) + "," + Fmt("%.9f", q.y()) + "," +

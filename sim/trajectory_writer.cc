@@ -4,6 +4,18 @@
 #include <cstdio>
 
 namespace viqu::sim {
+namespace {
+
+// " %.9f", without the sign of a value that rounds to zero ("-0.000000000").
+std::string Field(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof(buf), " %.9f", v);
+  std::string s = buf;
+  if (s == " -0.000000000") s = " 0.000000000";
+  return s;
+}
+
+}  // namespace
 
 std::string FormatSeconds(int64_t t_ns) {
   const bool negative = t_ns < 0;
@@ -20,12 +32,13 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path)
 }
 
 void TrajectoryWriter::Add(const StampedPose& pose) {
-  const Eigen::Quaterniond q = pose.q_w_x.normalized();
+  // q and -q are the same rotation: print the one with qw >= 0 so that lines do not flip sign.
+  Eigen::Quaterniond q = pose.q_w_x.normalized();
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
   const Eigen::Vector3d& p = pose.p_w_x;
-  char buf[256];
-  std::snprintf(buf, sizeof(buf), " %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", p.x(), p.y(), p.z(), q.x(),
-                q.y(), q.z(), q.w());
-  file_->Write(FormatSeconds(pose.t_ns) + buf);
+  std::string line = FormatSeconds(pose.t_ns);
+  for (double v : {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w()}) line += Field(v);
+  file_->Write(line + "\n");
   ++lines_;
 }
 

@@ -13,7 +13,7 @@ namespace viqu::sim {
 
 // Writes a trajectory in TUM format, one pose per line: "t tx ty tz qx qy qz qw" with t in
 // seconds (9 decimals, exact from the nanosecond stamp), positions in metres and a unit
-// quaternion. The file is written under a temporary name and renamed by Close(); destroyed
+// quaternion with qw >= 0. The file is written under a temporary name and renamed by Close(); destroyed
 // without Close(), the writer removes the temporary file and leaves no file under `path`.
 class TrajectoryWriter {
  public:

@@ -47,15 +47,20 @@ TEST(TrajectoryWriter, WritesTumLinesAndRenamesOnClose) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = Eigen::Vector3d(0.5, 0, 0);
     w.Add(2000000000, T);
+    StampedPose flipped;
+    flipped.t_ns = 3000000000;
+    flipped.q_w_x = Eigen::Quaterniond(-1, 0, 0, 0);
+    w.Add(flipped);
     EXPECT_FALSE(fs::exists(path)) << "final name must not exist before Close()";
-    EXPECT_EQ(w.size(), 2u);
+    EXPECT_EQ(w.size(), 3u);
     w.Close();
   }
   ASSERT_TRUE(fs::exists(path));
   EXPECT_EQ(ReadAll(path),
             "# timestamp tx ty tz qx qy qz qw\n"
             "1.050000000 1.000000000 -2.000000000 0.070000000 0.000000000 0.000000000 0.707106781 0.707106781\n"
-            "2.000000000 0.500000000 0.000000000 0.000000000 0.000000000 0.000000000 0.000000000 1.000000000\n");
+            "2.000000000 0.500000000 0.000000000 0.000000000 0.000000000 0.000000000 0.000000000 1.000000000\n"
+            "3.000000000 0.000000000 0.000000000 0.000000000 0.000000000 0.000000000 0.000000000 1.000000000\n");
   size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
   EXPECT_EQ(files, 1u) << "no temporary file may be left behind";
