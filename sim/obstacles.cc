@@ -18,7 +18,7 @@ constexpr double kLift_m = 0.002;
 constexpr double kRefHeight_m = 1.70;
 constexpr double kHipZ = 0.90;        // leg pivot height
 constexpr double kHipY = 0.09;        // leg pivot lateral offset
-constexpr double kLegLength = 0.86;   // pivot to sole
+constexpr double kLegLength = 0.885;  // pivot to sole: soles 1.5 cm above the floor
 constexpr double kStride = 1.40;      // distance walked per full gait cycle (two steps)
 constexpr double kSwingRad = 0.35;    // leg swing amplitude (rad)
 
@@ -228,9 +228,10 @@ void PersonXml(const ObstacleConfig& c, const ObstaclePath& path, std::ostringst
     const std::string name = base + (side > 0 ? "/leg_l" : "/leg_r");
     x << "  <body name=\"" << name << "\" mocap=\"true\" pos=\""
       << V3(p.x() + hip.x(), p.y() + hip.y(), hip.z()) << "\" quat=\"" << QuatAttr(q) << "\">\n";
-    x << "    <geom name=\"" << name << "/leg\" type=\"capsule\" size=\"" << Num(0.062 * s)
-      << "\" fromto=\"" << V3(0, 0, -0.07 * s) << " " << V3(0, 0, -0.76 * s)
-      << "\" material=\"viqu_obst_trousers\" " << kGeomClass << "/>\n";
+    // A box leg: a cube texture maps the whole trousers image onto each face (corner-rich).
+    x << "    <geom name=\"" << name << "/leg\" type=\"box\" size=\"" << V3(0.065 * s, 0.06 * s, 0.37 * s)
+      << "\" pos=\"" << V3(0, 0, -0.45 * s) << "\" material=\"viqu_obst_trousers\" " << kGeomClass
+      << "/>\n";
     x << "    <geom name=\"" << name << "/shoe\" type=\"box\" size=\"" << V3(0.12 * s, 0.05 * s, 0.035 * s)
       << "\" pos=\"" << V3(0.05 * s, 0, -(kLegLength - 0.035) * s) << "\" rgba=\"0.12 0.1 0.1 1\" "
       << kGeomClass << "/>\n";
