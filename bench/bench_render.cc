@@ -7,6 +7,9 @@
 //
 // Times are wall-clock per stereo frame (Render call: scene update, GL passes, read-backs and
 // conversions); llvmpipe renders on worker threads, so CPU time of the caller would mislead.
+// The counter proc_cpu_ms is the CPU time of the whole process (all llvmpipe threads) per
+// frame: the work a frame takes, which varies less than wall time on a busy machine.
+#include <ctime>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -79,6 +82,13 @@ std::string RoomXml(int extra_lights) {
   return x.str();
 }
 
+// CPU time of the whole process, all threads (s).
+double ProcessCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 // Renders frames of `m` with `opt` and reports ms per stereo frame.
 void RunFrames(benchmark::State& state, const RenderOptions& opt, ModelPtr m) {
   DataPtr d(mj_makeData(m.get()));
@@ -86,10 +96,13 @@ void RunFrames(benchmark::State& state, const RenderOptions& opt, ModelPtr m) {
   StereoRenderer renderer(m.get(), opt);
   StereoFrame frame;
   for (int i = 0; i < 3; ++i) renderer.Render(m.get(), d.get(), &frame);  // shader JIT, caches
+  const double cpu_start_s = ProcessCpuSeconds();
   for (auto _ : state) {
     renderer.Render(m.get(), d.get(), &frame);
     benchmark::DoNotOptimize(frame.left_rgb.data);
   }
+  state.counters["proc_cpu_ms"] =
+      1e3 * (ProcessCpuSeconds() - cpu_start_s) / static_cast<double>(state.iterations());
   state.SetLabel(renderer.device_description());
   for (const std::string& w : TakeMujocoWarnings()) state.SkipWithError(("MuJoCo warning: " + w).c_str());
 }

@@ -3,6 +3,7 @@
 // obstacles, projection of known points (the half-pixel convention) and stereo disparity.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
