@@ -106,6 +106,7 @@ EurocRecorder::EurocRecorder(const std::string& dataset_dir, const EurocRig& rig
 
 EurocRecorder::~EurocRecorder() {
   if (finished_) return;
+  writer_.reset();  // stop writing images into the folder that is about to go
   // Close (and delete) the temporary CSV files first, then the whole partial folder.
   for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &imu0_, &joints0_, &gt0_}) s->file.reset();
   std::error_code ec;
@@ -136,13 +137,8 @@ void EurocRecorder::WriteImage(const std::string& folder, CsvStream* csv, int64_
   // image against 18.3 ms and 575 KB for level 1 with the default strategy (PNG stays lossless).
   static const std::vector<int> kPngFast = {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
                                             cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY};
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, image, kPngFast);
-  } catch (const cv::Exception& e) {
-    throw RunError("cannot write " + path + ": " + e.what());
-  }
-  if (!ok) throw RunError("cannot write " + path);
+  // The queue encodes on its own thread; it gets its own copy, as callers reuse their buffers.
+  writer_->Push(path, image.clone(), kPngFast);
   csv->file->Write(RowStamp(t_ns) + "," + name + "\n");
 }
 
@@ -267,6 +263,7 @@ void EurocRecorder::WriteSensorFiles() const {
 
 void EurocRecorder::Finish() {
   if (finished_) return;
+  writer_->Drain();
   WriteSensorFiles();
   for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &imu0_, &joints0_, &gt0_}) {
     if (s->file) s->file->Commit();

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "common/atomic_output_file.h"
+#include "sim/image_write_queue.h"
 #include "scenario/scenario.h"
 #include "slam/measurements/ground_truth_pose.h"
 #include "slam/measurements/imu_sample.h"
@@ -78,6 +79,7 @@ class EurocRecorder {
   CsvStream cam0_, cam1_, depth0_, seg0_, imu0_, joints0_, gt0_;
   // Instances seen in the segmentation: (id, category, name), written to seg0/instances.csv.
   std::set<std::tuple<uint16_t, std::string, std::string>> instances_;
+  std::unique_ptr<ImageWriteQueue> writer_ = std::make_unique<ImageWriteQueue>();  // PNG encoding
   bool finished_ = false;    // Finish() succeeded
 };
 

@@ -1,0 +1,63 @@
+#include "sim/image_write_queue.h"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/errors.h"
+
+namespace viqu::sim {
+
+ImageWriteQueue::ImageWriteQueue(size_t max_pending)
+    : max_pending_(max_pending == 0 ? 1 : max_pending), worker_([this] { Work(); }) {}
+
+ImageWriteQueue::~ImageWriteQueue() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+    jobs_.clear();
+  }
+  changed_.notify_all();
+  worker_.join();
+}
+
+void ImageWriteQueue::ThrowIfFailed() {
+  if (!error_.empty()) throw RunError(error_);
+}
+
+void ImageWriteQueue::Push(std::string path, cv::Mat image, const std::vector<int>& params) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait(lock, [this] { return jobs_.size() < max_pending_ || !error_.empty(); });
+  ThrowIfFailed();
+  jobs_.push_back(Job{std::move(path), std::move(image), params});
+  changed_.notify_all();
+}
+
+void ImageWriteQueue::Drain() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait(lock, [this] { return (jobs_.empty() && !busy_) || !error_.empty(); });
+  ThrowIfFailed();
+}
+
+void ImageWriteQueue::Work() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    changed_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+    if (stop_) return;
+    Job job = std::move(jobs_.front());
+    jobs_.pop_front();
+    busy_ = true;
+    changed_.notify_all();
+    lock.unlock();
+    std::string failure;
+    try {
+      if (!cv::imwrite(job.path, job.image, job.params)) failure = "cannot write " + job.path;
+    } catch (const cv::Exception& e) {
+      failure = "cannot write " + job.path + ": " + e.what();
+    }
+    lock.lock();
+    busy_ = false;
+    if (!failure.empty() && error_.empty()) error_ = failure;
+    changed_.notify_all();
+  }
+}
+
+}  // namespace viqu::sim

@@ -1,0 +1,50 @@
+#pragma once
+// Encodes and writes images on a background thread, so that a recording run renders the next
+// frame while the last one is compressed. Bounded: Push blocks while `max_pending` images wait.
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+namespace viqu::sim {
+
+class ImageWriteQueue {
+ public:
+  explicit ImageWriteQueue(size_t max_pending = 8);
+  // Stops the worker; images still waiting are dropped (the caller discards a partial dataset).
+  ~ImageWriteQueue();
+  ImageWriteQueue(const ImageWriteQueue&) = delete;
+  ImageWriteQueue& operator=(const ImageWriteQueue&) = delete;
+
+  // Queues `image` (which must not be modified afterwards by the caller: pass a copy or a Mat
+  // that is not reused) for cv::imwrite(path, image, params). Throws viqu::RunError if an
+  // earlier write failed.
+  void Push(std::string path, cv::Mat image, const std::vector<int>& params);
+
+  // Waits until every queued image is written; throws viqu::RunError naming the first failure.
+  void Drain();
+
+ private:
+  struct Job {
+    std::string path;
+    cv::Mat image;
+    std::vector<int> params;
+  };
+  void Work();
+  void ThrowIfFailed();  // with mutex_ held
+
+  size_t max_pending_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Job> jobs_;
+  bool busy_ = false;     // the worker is writing a job it has taken off the queue
+  bool stop_ = false;
+  std::string error_;     // first failure, empty if none
+  std::thread worker_;
+};
+
+}  // namespace viqu::sim
