@@ -149,6 +149,15 @@ Eigen::Vector3d World::FootVelocityWorld(Leg leg) const {
   return Eigen::Vector3d(vel[3], vel[4], vel[5]);
 }
 
+Eigen::Vector3d World::FootSoleVelocityWorld(Leg leg) const {
+  const int i = static_cast<int>(leg);
+  mjtNum vel[6];  // [angular; linear] at the site centre, world orientation
+  mj_objectVelocity(model_.get(), data_.get(), mjOBJ_SITE, foot_site_[i], vel, 0);
+  const Eigen::Vector3d w(vel[0], vel[1], vel[2]), v(vel[3], vel[4], vel[5]);
+  const Eigen::Vector3d r_sole(0, 0, -model_->geom_size[3 * foot_geom_[i]]);  // centre to lowest point
+  return v + w.cross(r_sole);
+}
+
 Eigen::Vector3d World::TrueAccel() const {
   return Eigen::Map<const Eigen::Vector3d>(data_->sensordata + accel_adr_);
 }

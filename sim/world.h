@@ -43,6 +43,10 @@ class World {
   std::array<bool, kNumLegs> FootContacts() const;          // foot touches a non-robot geom
   Eigen::Vector3d FootPositionWorld(Leg leg) const;         // foot centre (m)
   Eigen::Vector3d FootVelocityWorld(Leg leg) const;         // foot centre velocity (m/s)
+  // Velocity of the foot's material point at its lowest point (where it touches flat ground):
+  // the centre velocity plus the foot's rotation about it. This is the slip velocity of a foot
+  // in contact; the centre alone also moves when the foot rolls (m/s).
+  Eigen::Vector3d FootSoleVelocityWorld(Leg leg) const;
   Eigen::Vector3d TrueAccel() const;  // accelerometer reading without noise (m/s^2, IMU frame)
   Eigen::Vector3d TrueGyro() const;   // gyro reading without noise (rad/s, IMU frame)
   bool TrunkTouchesGround() const;    // trunk or head geom in contact with a non-robot geom
