@@ -5,6 +5,7 @@
 #include <string>
 
 #include "apps/cli.h"
+#include "apps/eval_command.h"
 #include "apps/run_options.h"
 #include "apps/run_scenario.h"
 #include "apps/usage_error.h"
@@ -37,7 +38,7 @@ int Dispatch(const CliArgs& args) {
       return kExitOk;
     case Command::kRun: return Run(args.run);
     case Command::kSlam: return NotImplemented("slam");
-    case Command::kEval: return NotImplemented("eval");
+    case Command::kEval: return RunEval(args.eval);
     case Command::kSweep: return NotImplemented("sweep");
     case Command::kView: return NotImplemented("view");
   }

@@ -1,0 +1,79 @@
+#include "slam/eval/trajectory.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "common/errors.h"
+
+namespace viqu::eval {
+
+Trajectory ReadTumTrajectory(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read trajectory file");
+  Trajectory out;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream ss(line);
+    long double t = 0;
+    double v[7];
+    ss >> t;
+    for (double& x : v) ss >> x;
+    std::string extra;
+    if (ss.fail() || (ss >> extra)) {
+      throw InputError(path + ":" + std::to_string(line_no) + ": expected 8 numbers 't tx ty tz qx qy qz qw'");
+    }
+    bool finite = std::isfinite(static_cast<double>(t));
+    for (double x : v) finite = finite && std::isfinite(x);
+    if (!finite) throw InputError(path + ":" + std::to_string(line_no) + ": value is not a finite number");
+    StampedPose p;
+    p.t_ns = std::llround(t * 1e9L);
+    p.p_w_x = Eigen::Vector3d(v[0], v[1], v[2]);
+    const Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
+    if (std::abs(q.norm() - 1.0) > 1e-3) {
+      throw InputError(path + ":" + std::to_string(line_no) + ": quaternion is not unit length");
+    }
+    p.q_w_x = q.normalized();
+    if (!out.empty() && p.t_ns < out.back().t_ns) {
+      throw InputError(path + ":" + std::to_string(line_no) + ": timestamp goes backwards");
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<std::pair<size_t, size_t>> Associate(const Trajectory& est, const Trajectory& gt, double max_diff_s) {
+  struct Candidate {
+    int64_t diff_ns;
+    size_t i, j;
+  };
+  const int64_t max_ns = std::llround(max_diff_s * 1e9);
+  std::vector<Candidate> cand;
+  // Both are sorted by time: for each estimate, scan the window of ground truth within max_ns.
+  size_t lo = 0;
+  for (size_t i = 0; i < est.size(); ++i) {
+    while (lo < gt.size() && gt[lo].t_ns <= est[i].t_ns - max_ns) ++lo;
+    for (size_t j = lo; j < gt.size() && gt[j].t_ns < est[i].t_ns + max_ns; ++j) {
+      cand.push_back({std::llabs(est[i].t_ns - gt[j].t_ns), i, j});
+    }
+  }
+  std::stable_sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
+    return a.diff_ns < b.diff_ns;
+  });
+  std::vector<bool> used_est(est.size()), used_gt(gt.size());
+  std::vector<std::pair<size_t, size_t>> pairs;
+  for (const Candidate& c : cand) {
+    if (used_est[c.i] || used_gt[c.j]) continue;
+    used_est[c.i] = used_gt[c.j] = true;
+    pairs.emplace_back(c.i, c.j);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace viqu::eval
