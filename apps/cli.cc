@@ -1,5 +1,6 @@
 #include "apps/cli.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <utility>
 
@@ -20,8 +21,9 @@ const char* const kSlamUsage =
     "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR]\n"
     "    replay a recorded run folder or a public dataset through SLAM\n";
 const char* const kEvalUsage =
-    "viqu eval EST.txt GT.txt [--json]\n"
-    "    ATE/RPE of two TUM-format trajectories\n";
+    "viqu eval EST.txt GT.txt [--json] [--sim3] [--delta N | --delta-m D]\n"
+    "    ATE/RPE of two TUM-format trajectories (SE(3) alignment unless --sim3;\n"
+    "    RPE over N associated frames, default 1, or over D metres of path)\n";
 const char* const kSweepUsage =
     "viqu sweep SWEEP.yaml [--jobs N]\n"
     "    run a parameter grid over scenarios, one process per point\n";
@@ -159,6 +161,22 @@ EvalArgs ParseEval(ArgCursor* c) {
     } else if (arg == "--json") {
       c->NoValue(arg);
       a.json = true;
+    } else if (arg == "--sim3") {
+      c->NoValue(arg);
+      a.sim3 = true;
+    } else if (arg == "--delta" || arg == "--delta-m") {
+      const std::string v = c->TakeValue(arg);
+      char* end = nullptr;
+      const double x = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(x > 0)) {
+        throw UsageError("eval: " + arg + " expects a positive number, got '" + v + "'");
+      }
+      if (arg == "--delta") {
+        if (x != std::floor(x)) throw UsageError("eval: --delta expects a whole number of frames, got '" + v + "'");
+        a.delta_frames = static_cast<int>(x);
+      } else {
+        a.delta_m = x;
+      }
     } else {
       UnknownOption("eval", arg);
     }

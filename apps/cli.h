@@ -26,6 +26,9 @@ struct EvalArgs {
   std::string estimate;           // TUM trajectory to evaluate
   std::string ground_truth;       // TUM reference trajectory
   bool json = false;              // print one JSON object instead of text
+  bool sim3 = false;              // align with a similarity (scale too) instead of SE(3)
+  int delta_frames = 1;           // RPE pair distance in associated frames (--delta N)
+  double delta_m = 0;             // RPE pair distance in metres of path (--delta-m D); 0 = frames
 };
 
 // `viqu sweep SWEEP.yaml [--jobs N]`
