@@ -1,0 +1,122 @@
+#include "slam/features/stereo_matcher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace viqu::slam {
+namespace {
+
+int Hamming(const cv::Mat& a, int ra, const cv::Mat& b, int rb) {
+  return static_cast<int>(cv::norm(a.row(ra), b.row(rb), cv::NORM_HAMMING));
+}
+
+// SAD between a (2h+1)^2 patch of `l` centred at (xl, y) and of `r` centred at (xr, y).
+double Sad(const cv::Mat& l, const cv::Mat& r, int xl, int xr, int y, int h) {
+  double s = 0;
+  for (int dy = -h; dy <= h; ++dy) {
+    const uchar* pl = l.ptr<uchar>(y + dy);
+    const uchar* pr = r.ptr<uchar>(y + dy);
+    for (int dx = -h; dx <= h; ++dx) s += std::abs(int(pl[xl + dx]) - int(pr[xr + dx]));
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv::Mat& right_grey,
+                                              const std::vector<cv::KeyPoint>& left_kps, const cv::Mat& left_desc,
+                                              const std::vector<cv::KeyPoint>& right_kps, const cv::Mat& right_desc,
+                                              double fx, double baseline_m) const {
+  std::vector<StereoMatch> out(left_kps.size());
+  const double min_disp = 0.0;
+  const double max_disp = fx * baseline_m / opt_.min_depth_m;
+  // Right keypoints by row, so each left feature looks only at its band.
+  std::vector<std::vector<int>> rows(right_grey.rows);
+  for (size_t j = 0; j < right_kps.size(); ++j) {
+    const double band = opt_.row_band_px * std::pow(opt_.scale_factor, right_kps[j].octave);
+    const int lo = std::max(0, static_cast<int>(std::floor(right_kps[j].pt.y - band)));
+    const int hi = std::min(right_grey.rows - 1, static_cast<int>(std::ceil(right_kps[j].pt.y + band)));
+    for (int r = lo; r <= hi; ++r) rows[r].push_back(static_cast<int>(j));
+  }
+  // Pyramids for the SAD refinement, built on demand per level.
+  std::vector<cv::Mat> pyr_l, pyr_r;
+  auto level = [&](std::vector<cv::Mat>& pyr, const cv::Mat& base, int l) -> const cv::Mat& {
+    if (pyr.size() <= static_cast<size_t>(l)) pyr.resize(l + 1);
+    if (pyr[l].empty()) {
+      const double s = std::pow(opt_.scale_factor, l);
+      if (l == 0) pyr[l] = base;
+      else cv::resize(base, pyr[l], cv::Size(cvRound(base.cols / s), cvRound(base.rows / s)), 0, 0, cv::INTER_LINEAR);
+    }
+    return pyr[l];
+  };
+
+  std::vector<double> best_sad(left_kps.size(), -1);  // SAD at the refined match, -1 if none
+  for (size_t i = 0; i < left_kps.size(); ++i) {
+    const cv::KeyPoint& kl = left_kps[i];
+    const int row = cvRound(kl.pt.y);
+    if (row < 0 || row >= left_grey.rows) continue;
+    int best = std::numeric_limits<int>::max(), second = best, best_j = -1;
+    for (int j : rows[row]) {
+      const cv::KeyPoint& kr = right_kps[j];
+      if (std::abs(kr.octave - kl.octave) > 1) continue;
+      const double d = kl.pt.x - kr.pt.x;
+      if (d < min_disp || d > max_disp) continue;
+      const int dist = Hamming(left_desc, static_cast<int>(i), right_desc, j);
+      if (dist < best) {
+        second = best;
+        best = dist;
+        best_j = j;
+      } else if (dist < second) {
+        second = dist;
+      }
+    }
+    if (best_j < 0 || best >= opt_.max_hamming) continue;
+    // Repeated texture (bricks, tiles) gives several similar candidates along a row: keep only
+    // a match clearly better than the runner-up.
+    if (second < std::numeric_limits<int>::max() && best > opt_.max_ratio * second) continue;
+
+    // SAD refinement along the row at the left feature's level.
+    const double s = std::pow(opt_.scale_factor, kl.octave);
+    const cv::Mat& L = level(pyr_l, left_grey, kl.octave);
+    const cv::Mat& R = level(pyr_r, right_grey, kl.octave);
+    const int h = opt_.sad_half_window, w = opt_.sad_search_px;
+    const int xl = cvRound(kl.pt.x / s), yl = cvRound(kl.pt.y / s), xr0 = cvRound(right_kps[best_j].pt.x / s);
+    if (yl - h < 0 || yl + h >= L.rows || xl - h < 0 || xl + h >= L.cols || xr0 - w - h - 1 < 0 ||
+        xr0 + w + h + 1 >= R.cols) {
+      continue;
+    }
+    std::vector<double> sad(2 * w + 3);
+    for (int k = -w - 1; k <= w + 1; ++k) sad[k + w + 1] = Sad(L, R, xl, xr0 + k, yl, h);
+    const int arg = static_cast<int>(std::min_element(sad.begin() + 1, sad.end() - 1) - sad.begin());
+    const double c0 = sad[arg - 1], c1 = sad[arg], c2 = sad[arg + 1];
+    const double denom = 2 * (c0 + c2 - 2 * c1);
+    const double delta = denom > 0 ? (c0 - c2) / denom : 0.0;
+    if (std::abs(delta) > 1) continue;
+    const double u_r = (xr0 + (arg - w - 1) + delta) * s;
+    const double disparity = kl.pt.x - u_r;
+    if (disparity <= 0 || disparity > max_disp) continue;
+    best_sad[i] = c1;
+    out[i].right_index = best_j;
+    out[i].u_right = static_cast<float>(u_r);
+    const double depth = fx * baseline_m / disparity;
+    if (depth < opt_.max_depth_baselines * baseline_m) out[i].depth_m = static_cast<float>(depth);
+  }
+  // Patches that still differ much more than the typical match are wrong matches (repeated
+  // texture, occlusion): drop those above a multiple of the median SAD.
+  std::vector<double> sads;
+  for (double v : best_sad) if (v >= 0) sads.push_back(v);
+  if (!sads.empty()) {
+    std::nth_element(sads.begin(), sads.begin() + sads.size() / 2, sads.end());
+    const double limit = opt_.sad_outlier_factor * sads[sads.size() / 2];
+    for (size_t i = 0; i < out.size(); ++i) {
+      if (best_sad[i] > limit) out[i] = StereoMatch{};
+    }
+  }
+  return out;
+}
+
+}  // namespace viqu::slam

@@ -1,0 +1,45 @@
+#pragma once
+// Stereo correspondences on a rectified pair: for each left feature, the right features in a band
+// of rows around it, with a disparity in range, are compared by descriptor (Hamming distance);
+// the best is refined by sum-of-absolute-differences patch matching along the row at the
+// feature's pyramid level and a parabola through the SAD minimum for sub-pixel disparity.
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
+
+namespace viqu::slam {
+
+struct StereoMatcherOptions {
+  int max_hamming = 75;          // accept the best descriptor match below this distance (bits)
+  double row_band_px = 2.0;      // rows searched above and below, times the level's scale (px)
+  int sad_half_window = 5;       // SAD patch half size at the feature's level (px)
+  int sad_search_px = 5;         // SAD search range around the descriptor match (px at the level)
+  double max_ratio = 0.95;        // best distance must be below this times the second best
+  double min_depth_m = 0.1;      // nearer points are rejected (m)
+  double max_depth_baselines = 40;  // depth only for points closer than this many baselines
+  double scale_factor = 1.2;     // pyramid scale between levels (as the extractor's)
+  double sad_outlier_factor = 2.1;  // matches whose SAD exceeds this times the median are dropped
+};
+
+struct StereoMatch {
+  int right_index = -1;          // index into the right keypoints, -1 if unmatched
+  float u_right = -1;            // sub-pixel column in the right image (px), -1 if unmatched
+  float depth_m = -1;            // depth along the optical axis (m), -1 if unmatched or too far
+};
+
+class StereoMatcher {
+ public:
+  explicit StereoMatcher(const StereoMatcherOptions& opt = {}) : opt_(opt) {}
+
+  // One StereoMatch per left keypoint. fx (px) and baseline (m) give depth = fx * b / disparity.
+  std::vector<StereoMatch> Match(const cv::Mat& left_grey, const cv::Mat& right_grey,
+                                 const std::vector<cv::KeyPoint>& left_kps, const cv::Mat& left_desc,
+                                 const std::vector<cv::KeyPoint>& right_kps, const cv::Mat& right_desc,
+                                 double fx, double baseline_m) const;
+
+ private:
+  StereoMatcherOptions opt_;
+};
+
+}  // namespace viqu::slam

@@ -1,0 +1,143 @@
+// ORB features cover the image and stereo matching recovers depth, checked on a rendered stereo
+// pair of the room against the renderer's metric depth.
+#include <algorithm>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "apps/robot_rig.h"
+#include "sim/stereo_renderer.h"
+#include "slam/features/orb_extractor.h"
+#include "slam/features/stereo_matcher.h"
+
+namespace viqu {
+namespace {
+
+struct RenderedPair {
+  StereoFrame frame;
+  cv::Mat left, right;  // grey
+};
+
+RenderedPair RenderRoom(double x, double y, double yaw_deg) {
+  Scenario s;
+  s.name = "features_test";
+  s.world = std::string(VIQU_SOURCE_DIR) + "/models/worlds/room.xml";
+  s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
+  s.robot.start.xy = {x, y};
+  s.robot.start.yaw_deg = yaw_deg;
+  app::RobotRig rig(s);
+  sim::RenderOptions ro;
+  ro.segmentation = false;
+  sim::StereoRenderer renderer(rig.world().model(), ro);
+  RenderedPair p;
+  renderer.Render(rig.world().model(), rig.world().data(), &p.frame);
+  cv::cvtColor(p.frame.left_rgb, p.left, cv::COLOR_RGB2GRAY);
+  cv::cvtColor(p.frame.right_rgb, p.right, cv::COLOR_RGB2GRAY);
+  return p;
+}
+
+// Share of the 16 x 12 coarse cells that hold at least one keypoint, among the cells that hold a
+// FAST corner at the lowest threshold (cells with some texture).
+double Coverage(const std::vector<cv::KeyPoint>& kps, const cv::Mat& grey) {
+  std::vector<cv::KeyPoint> any;
+  cv::FAST(grey, any, 7);
+  const int nx = 16, ny = 12;
+  std::vector<int> textured(nx * ny), covered(nx * ny);
+  auto cell = [&](const cv::Point2f& p) {
+    return std::min(ny - 1, int(p.y * ny / grey.rows)) * nx + std::min(nx - 1, int(p.x * nx / grey.cols));
+  };
+  for (const auto& k : any) textured[cell(k.pt)] = 1;
+  for (const auto& k : kps) covered[cell(k.pt)] = 1;
+  int t = 0, c = 0;
+  for (int i = 0; i < nx * ny; ++i) {
+    t += textured[i];
+    c += textured[i] && covered[i];
+  }
+  return double(c) / t;
+}
+
+TEST(Features, OrbSpreadsOverTheImage) {
+  const RenderedPair p = RenderRoom(0.0, 0.0, 30.0);
+  slam::OrbExtractor orb;
+  std::vector<cv::KeyPoint> kps;
+  cv::Mat desc;
+  orb.Extract(p.left, cv::Mat(), &kps, &desc);
+  std::vector<cv::KeyPoint> plain;
+  cv::Mat plain_desc;
+  cv::ORB::create(1200)->detectAndCompute(p.left, cv::noArray(), plain, plain_desc);
+  const double ours = Coverage(kps, p.left), opencv = Coverage(plain, p.left);
+  std::printf("features %zu (descriptors %d), coverage of textured cells: ours %.1f%%, plain OpenCV ORB %.1f%%\n",
+              kps.size(), desc.rows, 100 * ours, 100 * opencv);
+  EXPECT_GE(kps.size(), 1000u);
+  EXPECT_LE(kps.size(), 1200u);
+  EXPECT_EQ(desc.rows, static_cast<int>(kps.size()));
+  EXPECT_GT(ours, 0.9);
+  EXPECT_GT(ours, opencv);
+}
+
+TEST(Features, MaskedPixelsGetNoFeatures) {
+  const RenderedPair p = RenderRoom(0.0, 0.0, 30.0);
+  cv::Mat mask(p.left.size(), CV_8U, cv::Scalar(255));
+  mask(cv::Rect(200, 100, 240, 200)).setTo(0);
+  slam::OrbExtractor orb;
+  std::vector<cv::KeyPoint> kps;
+  cv::Mat desc;
+  orb.Extract(p.left, mask, &kps, &desc);
+  int inside = 0;
+  for (const auto& k : kps) inside += cv::Rect(200, 100, 240, 200).contains(cv::Point(cvRound(k.pt.x), cvRound(k.pt.y)));
+  EXPECT_EQ(inside, 0);
+  EXPECT_GE(kps.size(), 800u);
+}
+
+TEST(Features, StereoDepthMatchesRenderedDepth) {
+  for (const auto& view : {std::array<double, 3>{0.0, 0.0, 30.0}, std::array<double, 3>{-1.0, -1.0, 0.0}}) {
+    const RenderedPair p = RenderRoom(view[0], view[1], view[2]);
+    slam::OrbExtractor orb;
+    std::vector<cv::KeyPoint> kl, kr;
+    cv::Mat dl, dr;
+    orb.Extract(p.left, cv::Mat(), &kl, &dl);
+    orb.Extract(p.right, cv::Mat(), &kr, &dr);
+    slam::StereoMatcher matcher;
+    const auto matches = matcher.Match(p.left, p.right, kl, dl, kr, dr, p.frame.intrinsics.fx, p.frame.baseline_m);
+    // Features whose true depth is within the matcher's depth range should get a depth.
+    const double max_depth = slam::StereoMatcherOptions().max_depth_baselines * p.frame.baseline_m;
+    std::vector<double> rel;
+    int in_range = 0;
+    int on_edges = 0;
+    for (size_t i = 0; i < kl.size(); ++i) {
+      // A corner's depth is only defined where the surface around it is continuous: skip
+      // features whose 5x5 depth neighbourhood spans more than 5% (occlusion boundaries).
+      const int u = cvRound(kl[i].pt.x), v = cvRound(kl[i].pt.y);
+      const cv::Rect win = cv::Rect(u - 2, v - 2, 5, 5) & cv::Rect(0, 0, p.left.cols, p.left.rows);
+      double lo = 0, hi = 0;
+      cv::minMaxLoc(p.frame.left_depth_m(win), &lo, &hi);
+      const float truth = p.frame.left_depth_m.at<float>(v, u);
+      if (truth <= 0 || lo <= 0) continue;
+      if (hi > 1.05 * lo) {
+        ++on_edges;
+        continue;
+      }
+      in_range += truth < 0.95 * max_depth;
+      if (matches[i].depth_m <= 0) continue;
+      rel.push_back(std::abs(matches[i].depth_m - truth) / truth);
+    }
+    std::sort(rel.begin(), rel.end());
+    ASSERT_FALSE(rel.empty());
+    const double median = rel[rel.size() / 2], p90 = rel[rel.size() * 9 / 10];
+    std::printf("view (%g, %g, %g deg): %zu left features (%d on depth edges, not scored), %d nearer than "
+                "%.2f m, %zu of those with stereo depth, relative depth error median %.2f%% p90 %.2f%%\n",
+                view[0], view[1], view[2], kl.size(), on_edges, in_range, max_depth, rel.size(), 100 * median,
+                100 * p90);
+    // Recall: measured 39% and 41% of in-range features (two views); a right image feature must
+    // exist at the same corner for a match. The floor catches a broken matcher; raising recall
+    // (a SAD row search for features without a right keypoint) is open work.
+    EXPECT_GT(rel.size(), in_range / 4);
+    EXPECT_LT(median, 0.02);
+    EXPECT_LT(p90, 0.05);
+  }
+}
+
+}  // namespace
+}  // namespace viqu
