@@ -130,10 +130,8 @@ TEST(Features, StereoDepthMatchesRenderedDepth) {
                 "%.2f m, %zu of those with stereo depth, relative depth error median %.2f%% p90 %.2f%%\n",
                 view[0], view[1], view[2], kl.size(), on_edges, in_range, max_depth, rel.size(), 100 * median,
                 100 * p90);
-    // Recall: measured 39% and 41% of in-range features (two views); a right image feature must
-    // exist at the same corner for a match. The floor catches a broken matcher; raising recall
-    // (a SAD row search for features without a right keypoint) is open work.
-    EXPECT_GT(rel.size(), in_range / 4);
+    // At least half of the features within the depth range get a depth.
+    EXPECT_GT(rel.size(), in_range / 2);
     EXPECT_LT(median, 0.02);
     EXPECT_LT(p90, 0.05);
   }

@@ -74,29 +74,48 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
         second = dist;
       }
     }
-    if (best_j < 0 || best >= opt_.max_hamming) continue;
-    // Repeated texture (bricks, tiles) gives several similar candidates along a row: keep only
-    // a match clearly better than the runner-up.
-    if (second < std::numeric_limits<int>::max() && best > opt_.max_ratio * second) continue;
+    const bool by_descriptor = best_j >= 0 && best < opt_.max_hamming &&
+                               // Repeated texture (bricks, tiles) gives several similar candidates
+                               // along a row: keep only a match clearly better than the runner-up.
+                               !(second < std::numeric_limits<int>::max() && best > opt_.max_ratio * second);
+    if (!by_descriptor) best_j = -1;
 
-    // SAD refinement along the row at the left feature's level.
+    // SAD along the row at the left feature's level: around the descriptor match, or, without
+    // one (the right image has no keypoint at this corner), over the whole disparity range.
     const double s = std::pow(opt_.scale_factor, kl.octave);
     const cv::Mat& L = level(pyr_l, left_grey, kl.octave);
     const cv::Mat& R = level(pyr_r, right_grey, kl.octave);
-    const int h = opt_.sad_half_window, w = opt_.sad_search_px;
-    const int xl = cvRound(kl.pt.x / s), yl = cvRound(kl.pt.y / s), xr0 = cvRound(right_kps[best_j].pt.x / s);
-    if (yl - h < 0 || yl + h >= L.rows || xl - h < 0 || xl + h >= L.cols || xr0 - w - h - 1 < 0 ||
-        xr0 + w + h + 1 >= R.cols) {
-      continue;
+    const int h = opt_.sad_half_window;
+    const int xl = cvRound(kl.pt.x / s), yl = cvRound(kl.pt.y / s);
+    if (yl - h < 0 || yl + h >= L.rows || xl - h < 0 || xl + h >= L.cols) continue;
+    int lo = 0, hi = 0;  // candidate right columns at the level, inclusive
+    if (by_descriptor) {
+      const int xr0 = cvRound(right_kps[best_j].pt.x / s);
+      lo = xr0 - opt_.sad_search_px;
+      hi = xr0 + opt_.sad_search_px;
+    } else {
+      lo = xl - static_cast<int>(std::floor(max_disp / s));
+      hi = xl - 1;
     }
-    std::vector<double> sad(2 * w + 3);
-    for (int k = -w - 1; k <= w + 1; ++k) sad[k + w + 1] = Sad(L, R, xl, xr0 + k, yl, h);
+    lo = std::max(lo, h + 1);
+    hi = std::min(hi, R.cols - h - 2);
+    if (hi < lo) continue;
+    std::vector<double> sad(hi - lo + 3);  // columns lo-1 .. hi+1
+    for (int x = lo - 1; x <= hi + 1; ++x) sad[x - lo + 1] = Sad(L, R, xl, x, yl, h);
     const int arg = static_cast<int>(std::min_element(sad.begin() + 1, sad.end() - 1) - sad.begin());
+    if (!by_descriptor) {
+      // Accept a search without a descriptor only if its minimum is unique along the row.
+      double runner_up = std::numeric_limits<double>::max();
+      for (int k = 1; k + 1 < static_cast<int>(sad.size()); ++k) {
+        if (std::abs(k - arg) > 2) runner_up = std::min(runner_up, sad[k]);
+      }
+      if (sad[arg] > opt_.sad_uniqueness * runner_up) continue;
+    }
     const double c0 = sad[arg - 1], c1 = sad[arg], c2 = sad[arg + 1];
     const double denom = 2 * (c0 + c2 - 2 * c1);
     const double delta = denom > 0 ? (c0 - c2) / denom : 0.0;
     if (std::abs(delta) > 1) continue;
-    const double u_r = (xr0 + (arg - w - 1) + delta) * s;
+    const double u_r = (lo - 1 + arg + delta) * s;
     const double disparity = kl.pt.x - u_r;
     if (disparity <= 0 || disparity > max_disp) continue;
     best_sad[i] = c1;

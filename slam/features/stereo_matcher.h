@@ -2,7 +2,9 @@
 // Stereo correspondences on a rectified pair: for each left feature, the right features in a band
 // of rows around it, with a disparity in range, are compared by descriptor (Hamming distance);
 // the best is refined by sum-of-absolute-differences patch matching along the row at the
-// feature's pyramid level and a parabola through the SAD minimum for sub-pixel disparity.
+// feature's pyramid level and a parabola through the SAD minimum for sub-pixel disparity. A left
+// feature with no right keypoint at its corner is searched by SAD along the whole row range and
+// kept if the minimum is unique.
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -20,10 +22,13 @@ struct StereoMatcherOptions {
   double max_depth_baselines = 40;  // depth only for points closer than this many baselines
   double scale_factor = 1.2;     // pyramid scale between levels (as the extractor's)
   double sad_outlier_factor = 2.1;  // matches whose SAD exceeds this times the median are dropped
+  double sad_uniqueness = 0.7;   // a row search without a descriptor match needs its SAD minimum
+                                 // below this times the best SAD more than 2 px away
 };
 
 struct StereoMatch {
-  int right_index = -1;          // index into the right keypoints, -1 if unmatched
+  int right_index = -1;          // index into the right keypoints; -1 if unmatched or found by
+                                 // the row search without a right keypoint (u_right says which)
   float u_right = -1;            // sub-pixel column in the right image (px), -1 if unmatched
   float depth_m = -1;            // depth along the optical axis (m), -1 if unmatched or too far
 };
