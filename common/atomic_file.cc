@@ -3,10 +3,10 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 
 #include <unistd.h>
 
+#include "common/atomic_output_file.h"
 #include "common/errors.h"
 
 namespace viqu {
@@ -24,18 +24,9 @@ void CommitTempFile(const std::string& tmp_path, const std::string& final_path) 
 }
 
 void WriteFileAtomic(const std::string& path, const std::string& content) {
-  const std::string tmp = TempPathFor(path);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw RunError("cannot write " + tmp + ": " + std::strerror(errno));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw RunError("write failed for " + tmp);
-    }
-  }
-  CommitTempFile(tmp, path);
+  AtomicOutputFile out(path);
+  out.Write(content);
+  out.Commit();
 }
 
 }  // namespace viqu

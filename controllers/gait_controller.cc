@@ -35,18 +35,18 @@ Eigen::Vector3d GaitController::NominalFoot(Leg leg) const {
                          -(opt_.stand_height_m - opt_.foot_radius_m));
 }
 
-std::array<double, kNumJoints> GaitController::SolveIk() const {
+std::array<double, kNumJoints> GaitController::SolveIk(const std::array<Eigen::Vector3d, kNumLegs>& feet) const {
   std::array<double, kNumJoints> q{};
   for (int i = 0; i < kNumLegs; ++i) {
-    kin_.Inverse(static_cast<Leg>(i), targets_[i], &q[2 * i], &q[2 * i + 1]);
+    kin_.Inverse(static_cast<Leg>(i), feet[i], &q[2 * i], &q[2 * i + 1]);
   }
   return q;
 }
 
 std::array<double, kNumJoints> GaitController::StandingTargets() const {
-  GaitController copy = *this;
-  for (int i = 0; i < kNumLegs; ++i) copy.targets_[i] = NominalFoot(static_cast<Leg>(i));
-  return copy.SolveIk();
+  std::array<Eigen::Vector3d, kNumLegs> feet;
+  for (int i = 0; i < kNumLegs; ++i) feet[i] = NominalFoot(static_cast<Leg>(i));
+  return SolveIk(feet);
 }
 
 std::array<double, kNumJoints> GaitController::Update(double dt_s, const BodyCommand& target) {
@@ -74,7 +74,7 @@ std::array<double, kNumJoints> GaitController::Update(double dt_s, const BodyCom
     for (int i = 0; i < kNumLegs; ++i) {
       targets_[i] = NominalFoot(static_cast<Leg>(i)) + Eigen::Vector3d(foot_x_[i], 0, 0);
     }
-    return SolveIk();
+    return SolveIk(targets_);
   }
 
   cycle_phase_ += schedule_.frequency_hz() * dt_s;
@@ -98,7 +98,7 @@ std::array<double, kNumJoints> GaitController::Update(double dt_s, const BodyCom
     stance_[i] = ph.stance;
     targets_[i] = nominal + Eigen::Vector3d(foot_x_[i], 0, z);
   }
-  return SolveIk();
+  return SolveIk(targets_);
 }
 
 }  // namespace viqu::ctrl

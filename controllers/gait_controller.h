@@ -43,7 +43,7 @@ class GaitController {
 
  private:
   Eigen::Vector3d NominalFoot(Leg leg) const;
-  std::array<double, kNumJoints> SolveIk() const;
+  std::array<double, kNumJoints> SolveIk(const std::array<Eigen::Vector3d, kNumLegs>& feet) const;
 
   const kin::LegKinematics& kin_;
   GaitSchedule schedule_;

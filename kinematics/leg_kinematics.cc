@@ -52,11 +52,6 @@ void CheckPlanarLeg(const LegChain& c, const std::string& leg, const std::string
 
 }  // namespace
 
-const char* LegName(Leg leg) {
-  static const char* kNames[] = {"FL", "FR", "BL", "BR"};
-  return kNames[static_cast<int>(leg)];
-}
-
 LegKinematics LegKinematics::FromUrdfFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read URDF file");

@@ -53,7 +53,4 @@ class LegKinematics {
   double total_mass_ = 0;
 };
 
-// "FL", "FR", "BL", "BR".
-const char* LegName(Leg leg);
-
 }  // namespace viqu::kin

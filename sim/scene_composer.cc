@@ -50,9 +50,7 @@ std::string InlineMjcfPiece(const std::string& path) {
 
 std::string ComposeSceneXml(const Scenario& s, const SceneHeader& h,
                             const std::vector<std::string>& generated) {
-  // MuJoCo's clipping planes are fractions of the model extent; fix the extent so the planes are
-  // known in metres.
-  const double extent = 10.0;
+  // The camera clipping planes are the renderer's (RenderOptions::z_near_m / z_far_m).
   std::ostringstream x;
   x.precision(9);
   x << "<mujoco model=\"viqu:" << s.name << "\">\n"
@@ -60,10 +58,8 @@ std::string ComposeSceneXml(const Scenario& s, const SceneHeader& h,
     << "  <option timestep=\"" << h.timestep_s << "\" gravity=\"0 0 -9.81\" cone=\"" << h.cone
     << "\" impratio=\"" << h.impratio << "\" noslip_iterations=\"" << h.noslip_iterations << "\"/>\n"
     << "  <size nconmax=\"400\" njmax=\"1500\"/>\n"
-    << "  <statistic extent=\"" << extent << "\" center=\"0 0 0.5\"/>\n"
     << "  <visual>\n"
     << "    <global offwidth=\"" << h.offscreen_width << "\" offheight=\"" << h.offscreen_height << "\"/>\n"
-    << "    <map znear=\"" << h.near_m / extent << "\" zfar=\"" << h.far_m / extent << "\"/>\n"
     << "    <quality shadowsize=\"0\"/>\n"
     << "  </visual>\n"
     << "  <!-- world: " << s.world << " -->\n"

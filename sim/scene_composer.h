@@ -18,8 +18,6 @@ struct SceneHeader {
   double timestep_s = 0.001;  // physics step (s)
   int offscreen_width = 640;  // off-screen buffer size (px)
   int offscreen_height = 480;
-  double near_m = 0.01;       // camera near clipping plane (m)
-  double far_m = 40.0;        // camera far clipping plane (m)
   // Contact model. Small feet creep under MuJoCo's soft pyramidal cones; an elliptic cone with a
   // high impedance ratio and a few no-slip iterations keep stance feet planted.
   std::string cone = "elliptic";

@@ -13,7 +13,6 @@ namespace {
 const Eigen::Matrix3d kR_mjcam_optical = Eigen::Vector3d(1, -1, -1).asDiagonal();
 
 const char* kJointSuffix[kJointsPerLeg] = {"_hip", "_knee"};
-const char* kLegNames[kNumLegs] = {"FL", "FR", "BL", "BR"};
 
 Eigen::Matrix3d Mat3(const mjtNum* m) {
   Eigen::Matrix3d R;
@@ -41,15 +40,16 @@ World::World(const Scenario& s, const std::array<double, kNumJoints>& q_stand, d
   accel_adr_ = m->sensor_adr[MjIdOrThrow(m, mjOBJ_SENSOR, "imu_accel", what)];
   gyro_adr_ = m->sensor_adr[MjIdOrThrow(m, mjOBJ_SENSOR, "imu_gyro", what)];
   for (int leg = 0; leg < kNumLegs; ++leg) {
+    const std::string prefix = LegName(static_cast<Leg>(leg));
     for (int j = 0; j < kJointsPerLeg; ++j) {
-      const std::string name = std::string(kLegNames[leg]) + kJointSuffix[j];
+      const std::string name = prefix + kJointSuffix[j];
       const int jid = MjIdOrThrow(m, mjOBJ_JOINT, name, what);
       qpos_adr_[2 * leg + j] = m->jnt_qposadr[jid];
       dof_adr_[2 * leg + j] = m->jnt_dofadr[jid];
       actuator_[2 * leg + j] = MjIdOrThrow(m, mjOBJ_ACTUATOR, name, what);
     }
-    foot_geom_[leg] = MjIdOrThrow(m, mjOBJ_GEOM, std::string(kLegNames[leg]) + "_foot", what);
-    foot_site_[leg] = MjIdOrThrow(m, mjOBJ_SITE, std::string(kLegNames[leg]) + "_foot", what);
+    foot_geom_[leg] = MjIdOrThrow(m, mjOBJ_GEOM, prefix + "_foot", what);
+    foot_site_[leg] = MjIdOrThrow(m, mjOBJ_SITE, prefix + "_foot", what);
   }
   for (int g = 0; g < m->ngeom; ++g) {
     const int b = m->geom_bodyid[g];

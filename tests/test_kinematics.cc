@@ -12,7 +12,6 @@ namespace viqu {
 namespace {
 
 const std::string kRatDir = std::string(VIQU_SOURCE_DIR) + "/models/rat/";
-const char* kLegs[kNumLegs] = {"FL", "FR", "BL", "BR"};
 
 class KinematicsTest : public ::testing::Test {
  protected:
@@ -45,8 +44,8 @@ TEST_F(KinematicsTest, UrdfForwardKinematicsMatchesMujocoFootSites) {
       const auto& c = kin_.chain(static_cast<Leg>(leg));
       angles[2 * leg] = std::uniform_real_distribution<double>(c.hip_lower, c.hip_upper)(rng);
       angles[2 * leg + 1] = std::uniform_real_distribution<double>(c.knee_lower, c.knee_upper)(rng);
-      const int jh = mj_name2id(m, mjOBJ_JOINT, (std::string(kLegs[leg]) + "_hip").c_str());
-      const int jk = mj_name2id(m, mjOBJ_JOINT, (std::string(kLegs[leg]) + "_knee").c_str());
+      const int jh = mj_name2id(m, mjOBJ_JOINT, (std::string(LegName(static_cast<Leg>(leg))) + "_hip").c_str());
+      const int jk = mj_name2id(m, mjOBJ_JOINT, (std::string(LegName(static_cast<Leg>(leg))) + "_knee").c_str());
       d->qpos[m->jnt_qposadr[jh]] = angles[2 * leg];
       d->qpos[m->jnt_qposadr[jk]] = angles[2 * leg + 1];
     }
@@ -56,11 +55,11 @@ TEST_F(KinematicsTest, UrdfForwardKinematicsMatchesMujocoFootSites) {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) R_w_trunk(r, c) = d->xmat[9 * trunk + 3 * r + c];
     for (int leg = 0; leg < kNumLegs; ++leg) {
-      const int site = mj_name2id(m, mjOBJ_SITE, (std::string(kLegs[leg]) + "_foot").c_str());
+      const int site = mj_name2id(m, mjOBJ_SITE, (std::string(LegName(static_cast<Leg>(leg))) + "_foot").c_str());
       const Eigen::Vector3d p_w_foot(d->site_xpos + 3 * site);
       const Eigen::Vector3d mujoco_in_trunk = R_w_trunk.transpose() * (p_w_foot - p_w_trunk);
       const Eigen::Vector3d urdf_in_trunk = kin_.FootInTrunk(static_cast<Leg>(leg), angles[2 * leg], angles[2 * leg + 1]);
-      EXPECT_LT((mujoco_in_trunk - urdf_in_trunk).norm(), 1e-6) << "leg " << kLegs[leg] << " trial " << trial;
+      EXPECT_LT((mujoco_in_trunk - urdf_in_trunk).norm(), 1e-6) << "leg " << LegName(static_cast<Leg>(leg)) << " trial " << trial;
     }
   }
 }
@@ -72,8 +71,8 @@ TEST_F(KinematicsTest, UrdfAndMjcfHaveTheSameMassAndJointLimits) {
   EXPECT_NEAR(mass, kin_.total_mass(), 1e-9);
   for (int leg = 0; leg < kNumLegs; ++leg) {
     const auto& c = kin_.chain(static_cast<Leg>(leg));
-    const int jh = mj_name2id(m, mjOBJ_JOINT, (std::string(kLegs[leg]) + "_hip").c_str());
-    const int jk = mj_name2id(m, mjOBJ_JOINT, (std::string(kLegs[leg]) + "_knee").c_str());
+    const int jh = mj_name2id(m, mjOBJ_JOINT, (std::string(LegName(static_cast<Leg>(leg))) + "_hip").c_str());
+    const int jk = mj_name2id(m, mjOBJ_JOINT, (std::string(LegName(static_cast<Leg>(leg))) + "_knee").c_str());
     EXPECT_NEAR(m->jnt_range[2 * jh], c.hip_lower, 1e-9);
     EXPECT_NEAR(m->jnt_range[2 * jh + 1], c.hip_upper, 1e-9);
     EXPECT_NEAR(m->jnt_range[2 * jk], c.knee_lower, 1e-9);

@@ -32,7 +32,10 @@ float CentroidAngle(const cv::Mat& img, cv::Point2f pt, const std::vector<int>& 
 
 }  // namespace
 
-OrbExtractor::OrbExtractor(const OrbExtractorOptions& opt) : opt_(opt) {
+OrbExtractor::OrbExtractor(const OrbExtractorOptions& opt)
+    : opt_(opt),
+      brief_(cv::ORB::create(opt.num_features, static_cast<float>(opt.scale_factor), opt.num_levels, kEdge, 0, 2,
+                             cv::ORB::HARRIS_SCORE, kPatchSize, opt.fast_threshold)) {
   scales_.resize(opt_.num_levels);
   for (int l = 0; l < opt_.num_levels; ++l) scales_[l] = std::pow(opt_.scale_factor, l);
   // Geometric split of the features over the levels, proportional to each level's area share.
@@ -117,10 +120,7 @@ void OrbExtractor::Extract(const cv::Mat& grey, const cv::Mat& mask, std::vector
   }
   // Descriptors: OpenCV's rotated BRIEF on its own pyramid with the same levels, for the
   // keypoints (and angles) chosen above.
-  cv::Ptr<cv::ORB> orb = cv::ORB::create(opt_.num_features, static_cast<float>(opt_.scale_factor),
-                                         opt_.num_levels, kEdge, 0, 2, cv::ORB::HARRIS_SCORE, kPatchSize,
-                                         opt_.fast_threshold);
-  orb->detectAndCompute(grey, cv::noArray(), *keypoints, *descriptors, true);
+  brief_->detectAndCompute(grey, cv::noArray(), *keypoints, *descriptors, true);
 }
 
 }  // namespace viqu::slam

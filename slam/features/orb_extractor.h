@@ -9,6 +9,10 @@
 #include <opencv2/core/mat.hpp>
 #include <opencv2/core/types.hpp>
 
+namespace cv {
+class ORB;
+}
+
 namespace viqu::slam {
 
 struct OrbExtractorOptions {
@@ -41,6 +45,7 @@ class OrbExtractor {
   std::vector<double> scales_;        // scale of each level relative to level 0
   std::vector<int> quota_;            // features wanted per level
   std::vector<int> umax_;             // circular patch row half-widths for the orientation
+  cv::Ptr<cv::ORB> brief_;            // rotated-BRIEF descriptor computer, same pyramid settings
 };
 
 }  // namespace viqu::slam

@@ -10,6 +10,12 @@ constexpr int kNumLegs = 4;
 constexpr int kJointsPerLeg = 2;  // hip/shoulder pitch theta1, knee/elbow pitch theta2
 constexpr int kNumJoints = kNumLegs * kJointsPerLeg;
 
+// "FL", "FR", "BL", "BR": the prefix of the leg's joint, actuator, site and geom names.
+inline const char* LegName(Leg leg) {
+  static const char* const kNames[kNumLegs] = {"FL", "FR", "BL", "BR"};
+  return kNames[static_cast<int>(leg)];
+}
+
 // Encoder reading of all joints plus the contact state of every foot.
 struct JointState {
   int64_t t_ns = 0;                              // simulated time (ns)
