@@ -1,0 +1,71 @@
+#pragma once
+// The stereo (or RGB-D) visual SLAM system: feed it frames in time order, get a pose and a
+// tracking status for every frame. Mapping runs inline after each keyframe (mapping.mode: sync,
+// deterministic) or on a second thread (realtime). Heavy headers (Ceres) stay out of this one.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "slam/measurements/stereo_frame.h"
+#include "slam/settings/slam_settings.h"
+
+namespace viqu::slam {
+
+enum class TrackStatus {
+  kInitialised,  // first frame: the map was created from its stereo points; pose is the origin
+  kTracking,     // tracked against the map
+  kRelocalised,  // was lost; found again by matching against keyframes
+  kLost,         // no pose from vision: the pose is the motion-model prediction
+};
+const char* TrackStatusName(TrackStatus s);
+
+struct TrackResult {
+  int64_t t_ns = 0;
+  Eigen::Isometry3d T_w_c = Eigen::Isometry3d::Identity();  // left camera in the SLAM world
+  TrackStatus status = TrackStatus::kLost;
+  bool keyframe = false;         // this frame became a keyframe
+  int features = 0;              // features extracted in the left image
+  int stereo_points = 0;         // features with depth
+  int inliers = 0;               // map-point matches kept by pose optimisation
+  double track_ms = 0;           // wall time of Track() (ms)
+};
+
+struct SlamStats {
+  int frames = 0;
+  int lost_frames = 0;
+  int relocalisations = 0;
+  int keyframes = 0;             // keyframes in the map now
+  int map_points = 0;            // map points in the map now
+  std::vector<double> track_ms;  // per frame (ms)
+  std::vector<double> local_ba_ms;  // per local BA (ms)
+};
+
+class SlamSystem {
+ public:
+  // `world_from_first_camera` places the map: the first frame's camera pose in the output world
+  // frame (identity: the trajectory starts at the origin).
+  explicit SlamSystem(const SlamSettings& settings,
+                      const Eigen::Isometry3d& world_from_first_camera = Eigen::Isometry3d::Identity());
+  ~SlamSystem();
+  SlamSystem(const SlamSystem&) = delete;
+  SlamSystem& operator=(const SlamSystem&) = delete;
+
+  // Tracks one frame. Frames must come in increasing time (InputError otherwise). Stereo input
+  // uses left_rgb + right_rgb; rgbd input uses left_rgb + left_depth_m.
+  TrackResult Track(const StereoFrame& frame);
+
+  // Waits for the mapping thread (realtime mode) to finish its queue.
+  void Finish();
+
+  SlamStats Stats() const;
+  const SlamSettings& settings() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace viqu::slam

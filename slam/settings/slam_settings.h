@@ -1,0 +1,64 @@
+#pragma once
+// Settings of the SLAM system, as read from a YAML file (slam/config/default.yaml holds every
+// key with its default). Loading is strict: an unknown key, a wrong type or an out-of-range value
+// is an InputError naming the file, line and column.
+#include <string>
+#include <vector>
+
+#include "slam/features/orb_extractor.h"
+#include "slam/features/stereo_matcher.h"
+
+namespace viqu::slam {
+
+struct TrackingSettings {
+  double motion_search_px = 15;      // window radius for matching with the motion model (px, level 0)
+  double local_map_search_px = 4;    // window radius for local-map projection (px, times scale)
+  int max_hamming = 100;             // descriptor distance accepted in projection search (bits)
+  double match_ratio = 0.9;          // best / second-best distance for window searches
+  int min_inliers = 30;              // pose-only inliers below this: the frame is lost
+  int min_inliers_motion = 20;       // motion-model matches below this: fall back to the keyframe
+  int local_keyframes = 20;          // covisible keyframes whose points form the local map
+  double huber_px = 2.447;           // robust kernel width, sqrt(chi2 2 dof 95%) (px)
+  int pose_iterations = 4;           // rounds of optimise / reclassify outliers
+  // Keyframe decision (ORB-SLAM's criteria, in frames at camera rate)
+  int keyframe_max_frames = 20;      // a keyframe at least this often
+  int keyframe_min_frames = 0;       // never more often than this
+  double keyframe_ratio = 0.75;      // tracked points of the reference keyframe below this share
+  int close_points_min = 70;         // near stereo points tracked; fewer, with enough new: keyframe
+  int relocalise_min_inliers = 40;   // PnP RANSAC inliers to accept a relocalisation
+};
+
+struct MappingSettings {
+  std::string mode = "sync";         // sync (inline, deterministic) | realtime (second thread)
+  int ba_window = 10;                // keyframes optimised by local BA (covisibility order)
+  int ba_iterations = 10;            // Levenberg-Marquardt iterations per local BA
+  double ba_huber_px = 2.447;        // robust kernel (px)
+  int covisibility_min = 15;         // shared points for a covisibility edge
+  int triangulation_neighbours = 10; // keyframes searched for new points
+  double min_parallax_deg = 1.0;     // triangulation needs at least this ray angle (deg)
+  double culling_found_ratio = 0.25; // a point found in fewer than this share of frames it was visible in is culled
+  double redundant_keyframe_ratio = 0.9;  // a keyframe whose points are seen by 3 others in this share is culled
+};
+
+struct SlamSettings {
+  std::string source_file;           // the YAML the settings came from ("" = built-in defaults)
+  std::string input = "stereo";      // stereo | rgbd (depth from left_depth_m)
+  double rgbd_max_depth_m = 6;       // rgbd: depth beyond this is ignored (m)
+  double rgbd_virtual_baseline_m = 0.08;  // rgbd: baseline of the virtual right camera (m)
+  OrbExtractorOptions orb;
+  StereoMatcherOptions stereo;
+  TrackingSettings tracking;
+  MappingSettings mapping;
+};
+
+// Reads settings from `path`. Keys not in the file keep their defaults; `overrides` are
+// "key.path=value" strings applied before reading (as `--set`). Throws InputError.
+SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Path of slam/config/default.yaml in the source tree.
+std::string DefaultSlamSettingsPath();
+
+// The settings as YAML text (every key), loadable by LoadSlamSettings.
+std::string SlamSettingsToYaml(const SlamSettings& s);
+
+}  // namespace viqu::slam
