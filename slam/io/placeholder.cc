@@ -1,0 +1,1 @@
+// Placeholder until the dataset readers land; removed with them.
