@@ -24,6 +24,9 @@ class ProgressLine {
   // Draws the final state and ends the line (once; also called by the destructor).
   void Finish();
 
+  // A short word shown after the rate (e.g. the SLAM tracking status); must outlive the line.
+  void SetNote(const char* note) { note_ = note; }
+
   bool enabled() const { return enabled_; }
 
  private:
@@ -38,6 +41,7 @@ class ProgressLine {
   double last_sim_s_ = 0;                             // latest simulated time reported (s)
   double last_wall_s_ = 0;                            // wall time of that report (s)
   bool finished_ = false;                             // Finish() ran
+  const char* note_ = "";                             // shown after the rate
 };
 
 }  // namespace viqu::app

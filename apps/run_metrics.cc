@@ -21,6 +21,12 @@ double Median(std::vector<double> v) { return Percentile(std::move(v), 0.5); }
 
 std::string MetricsJson(const Scenario& s, const RunMetrics& m) {
   JsonWriter j;
+  AddRunMetrics(s, m, &j);
+  return j.ToString();
+}
+
+void AddRunMetrics(const Scenario& s, const RunMetrics& m, JsonWriter* json) {
+  JsonWriter& j = *json;
   j.Set("scenario", s.name);
   j.Set("seed", s.seed);
   j.Set("sim_time_s", m.sim_time_s);
@@ -33,7 +39,6 @@ std::string MetricsJson(const Scenario& s, const RunMetrics& m) {
   j.Set("timing.wall_time_s", m.wall_time_s);
   j.Set("timing.real_time_factor", m.wall_time_s > 0 ? m.sim_time_s / m.wall_time_s : 0.0);
   j.Set("timing.renderer", m.renderer);
-  return j.ToString();
 }
 
 }  // namespace viqu::app

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "common/json_writer.h"
 #include "scenario/scenario.h"
 
 namespace viqu::app {
@@ -13,6 +14,7 @@ struct RunMetrics {
   double path_length_m = 0;           // horizontal path of the trunk (m)
   bool fell = false;
   std::vector<double> render_ms;      // per camera frame (ms)
+  std::vector<double> track_ms;       // SLAM tracking per camera frame (ms)
   int frames = 0;                     // camera frames produced
   std::string steer_source = "ground_truth";
   std::string renderer;               // EGL device description
@@ -21,7 +23,9 @@ struct RunMetrics {
 double Median(std::vector<double> v);
 double Percentile(std::vector<double> v, double p);  // p in [0, 1]
 
-// The metrics.json text (DESIGN.md keys).
+// The simulation's metrics.json keys (DESIGN.md), added to `j`.
+void AddRunMetrics(const Scenario& s, const RunMetrics& m, JsonWriter* j);
+// The metrics.json text of a run without SLAM.
 std::string MetricsJson(const Scenario& s, const RunMetrics& m);
 
 }  // namespace viqu::app

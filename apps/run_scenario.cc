@@ -14,6 +14,7 @@
 #include "apps/robot_rig.h"
 #include "apps/run_metrics.h"
 #include "apps/sensor_clock.h"
+#include "apps/slam_run.h"
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "scenario/scenario_loader.h"
@@ -24,6 +25,7 @@
 #include "sim/segmentation_model.h"
 #include "sim/stereo_renderer.h"
 #include "sim/trajectory_writer.h"
+#include "slam/settings/slam_settings.h"
 
 namespace viqu::app {
 namespace {
@@ -99,6 +101,13 @@ sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const Pinhole
   return rig;
 }
 
+Eigen::Isometry3d ToIsometry(const StampedPose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = p.q_w_x.normalized().toRotationMatrix();
+  T.translation() = p.p_w_x;
+  return T;
+}
+
 }  // namespace
 
 int RunScenario(const Scenario& s, const RunOptions& opt) {
@@ -122,10 +131,17 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     std::fprintf(stderr, "viqu: warning: robot.command.follow is 'estimate' but the SLAM estimator is not "
                          "part of this build yet; steering by ground truth\n");
   }
+  // The map is anchored at the true first camera pose, so that the estimate and the ground
+  // truth share a frame (ATE aligns them anyway).
+  std::unique_ptr<SlamRun> slam;
   if (opt.slam) {
-    std::fprintf(stderr, "viqu: note: live SLAM is not implemented yet; running the simulation only "
-                         "(same as --no-slam)\n");
+    const std::string settings_path = s.slam.config.empty() ? slam::DefaultSlamSettingsPath() : s.slam.config;
+    const slam::SlamSettings settings = slam::LoadSlamSettings(settings_path);
+    WriteFileAtomic(out + "/slam_settings.yaml", slam::SlamSettingsToYaml(settings));
+    const Eigen::Isometry3d T_w_c0 = ToIsometry(world.GroundTruth().T_w_cam);
+    slam = std::make_unique<SlamRun>(settings, out, T_w_c0);
   }
+  eval::Trajectory gt_cam;
 
   std::unique_ptr<sim::EurocRecorder> recorder;
   if (opt.record) {
@@ -162,6 +178,12 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       if (!frame.left_instance_id.empty()) sensors.segmentation.Apply(&frame);
       const GroundTruthState gt = world.GroundTruth();
       gt_out.Add(gt.T_w_cam);
+      gt_cam.push_back(gt.T_w_cam);
+      if (slam) {
+        const slam::TrackResult r = slam->Track(frame);
+        metrics.track_ms.push_back(r.track_ms);
+        progress.SetNote(slam::TrackStatusName(r.status));
+      }
       metrics.path_length_m += (gt.T_w_body.p_w_x - last_p).head<2>().norm();
       last_p = gt.T_w_body.p_w_x;
       ++metrics.frames;
@@ -183,14 +205,19 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   if (video) video->Finish();
   metrics.sim_time_s = world.data()->time;
   metrics.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  WriteFileAtomic(out + "/metrics.json", MetricsJson(s, metrics));
+  JsonWriter json;
+  AddRunMetrics(s, metrics, &json);
+  SlamSummary summary;
+  if (slam) summary = slam->Finish(gt_cam, metrics.path_length_m, &json);
+  WriteFileAtomic(out + "/metrics.json", json.ToString());
 
   std::printf("viqu run %s: %.1f s simulated in %.1f s (real-time factor %.2fx), path %.2f m, %d frames, "
               "render %.1f ms median%s\n",
               s.name.c_str(), metrics.sim_time_s, metrics.wall_time_s, metrics.sim_time_s / metrics.wall_time_s,
               metrics.path_length_m, metrics.frames, Median(metrics.render_ms), metrics.fell ? ", ROBOT FELL" : "");
-  std::printf("outputs: %s/{scenario.yaml,trajectory_gt.txt,metrics.json%s%s}\n", out.c_str(),
-              recorder ? ",dataset/" : "", video ? ",video.mp4" : "");
+  if (slam) std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
+  std::printf("outputs: %s/{scenario.yaml,trajectory_gt.txt,metrics.json%s%s%s}\n", out.c_str(),
+              slam ? ",trajectory_est.txt,slam_settings.yaml" : "", recorder ? ",dataset/" : "", video ? ",video.mp4" : "");
   return metrics.fell && !s.robot.allow_fall ? 1 : 0;
 }
 

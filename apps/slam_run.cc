@@ -1,0 +1,83 @@
+#include "apps/slam_run.h"
+
+#include <cstdio>
+
+#include "apps/run_metrics.h"
+#include "slam/eval/trajectory_error.h"
+
+namespace viqu::app {
+
+SlamRun::SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
+                 const Eigen::Isometry3d& world_from_first_camera)
+    : system_(settings, world_from_first_camera), writer_(out_dir + "/trajectory_est.txt") {}
+
+slam::TrackResult SlamRun::Track(const StereoFrame& frame) {
+  const slam::TrackResult r = system_.Track(frame);
+  StampedPose p;
+  p.t_ns = r.t_ns;
+  p.q_w_x = Eigen::Quaterniond(r.T_w_c.rotation()).normalized();
+  p.p_w_x = r.T_w_c.translation();
+  writer_.Add(p);
+  est_.push_back(p);
+  status_.push_back(r.status);
+  return r;
+}
+
+SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, JsonWriter* json) {
+  system_.Finish();
+  writer_.Close();
+  const slam::SlamStats st = system_.Stats();
+  SlamSummary s;
+  s.frames = st.frames;
+  s.lost = st.lost_frames;
+  s.keyframes = st.keyframes;
+  s.map_points = st.map_points;
+  s.track_ms_median = Median(st.track_ms);
+  s.track_ms_p95 = Percentile(st.track_ms, 0.95);
+  json->Set("tracking.frames", st.frames);
+  json->Set("tracking.lost_frames", st.lost_frames);
+  json->Set("tracking.relocalisations", st.relocalisations);
+  json->Set("tracking.keyframes", st.keyframes);
+  json->Set("tracking.map_points", st.map_points);
+  json->Set("timing.track_ms_median", s.track_ms_median);
+  json->Set("timing.track_ms_p95", s.track_ms_p95);
+  json->Set("timing.local_ba_ms_median", Median(st.local_ba_ms));
+  json->Set("timing.local_ba_count", static_cast<int>(st.local_ba_ms.size()));
+  json->Set("slam.input", system_.settings().input);
+  json->Set("slam.mapping_mode", system_.settings().mapping.mode);
+  json->Set("slam.settings_file", system_.settings().source_file);
+  if (!gt.empty() && est_.size() >= 3) {
+    const eval::AteResult ate = eval::ComputeAte(est_, gt);
+    const eval::ErrorStats rpe = eval::ComputeRpe(est_, gt, 1);
+    json->Set("ate.rmse_m", ate.ate.rmse);
+    json->Set("ate.mean_m", ate.ate.mean);
+    json->Set("ate.median_m", ate.ate.median);
+    json->Set("ate.std_m", ate.ate.std);
+    json->Set("ate.min_m", ate.ate.min);
+    json->Set("ate.max_m", ate.ate.max);
+    json->Set("ate.pairs", static_cast<int64_t>(ate.pairs));
+    if (path_length_m > 0) json->Set("ate.rmse_pct_path", 100.0 * ate.ate.rmse / path_length_m);
+    json->Set("rpe.trans_rmse_m", rpe.rmse);
+    json->Set("rpe.delta_frames", 1);
+    s.has_ate = true;
+    s.ate_rmse_m = ate.ate.rmse;
+    s.ate_pct_path = path_length_m > 0 ? 100.0 * ate.ate.rmse / path_length_m : 0;
+    s.rpe_rmse_m = rpe.rmse;
+  }
+  return s;
+}
+
+std::string SlamSummaryLine(const SlamSummary& s) {
+  char buf[256];
+  if (s.has_ate) {
+    std::snprintf(buf, sizeof buf, "ATE %.4f m RMSE (%.2f%% of path), ", s.ate_rmse_m, s.ate_pct_path);
+  } else {
+    buf[0] = 0;
+  }
+  std::string out = buf;
+  std::snprintf(buf, sizeof buf, "%d lost of %d frames, %d keyframes, %d map points, tracking %.1f ms median (p95 %.1f)",
+                s.lost, s.frames, s.keyframes, s.map_points, s.track_ms_median, s.track_ms_p95);
+  return out + buf;
+}
+
+}  // namespace viqu::app

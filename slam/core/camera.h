@@ -1,0 +1,25 @@
+#pragma once
+// The rectified stereo camera as the tracker sees it: pinhole intrinsics of the left camera and
+// bf = fx * baseline, which turns depth into the column of the same point in the right image.
+#include <Eigen/Core>
+
+namespace viqu::slam {
+
+struct StereoCamera {
+  int width = 0, height = 0;       // (px)
+  double fx = 0, fy = 0, cx = 0, cy = 0;  // (px)
+  double bf = 0;                   // fx * baseline (px m); the virtual baseline for RGB-D input
+  double close_depth_m = 0;        // points nearer than this have reliable stereo depth (m)
+
+  Eigen::Vector2d Project(const Eigen::Vector3d& p_c) const {
+    return {fx * p_c.x() / p_c.z() + cx, fy * p_c.y() / p_c.z() + cy};
+  }
+  // Column of the point in the right image.
+  double ProjectRight(const Eigen::Vector3d& p_c) const { return fx * p_c.x() / p_c.z() + cx - bf / p_c.z(); }
+  Eigen::Vector3d Unproject(double u, double v, double depth) const {
+    return {(u - cx) / fx * depth, (v - cy) / fy * depth, depth};
+  }
+  bool InImage(double u, double v) const { return u >= 0 && v >= 0 && u <= width - 1 && v <= height - 1; }
+};
+
+}  // namespace viqu::slam

@@ -1,0 +1,58 @@
+#pragma once
+// One tracked image: its features with stereo depth, a grid for searching features by area, the
+// map points matched to them and the camera pose. Keyframes keep the frame's features by sharing
+// the same FrameFeatures.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
+
+#include "slam/core/camera.h"
+
+namespace viqu::slam {
+
+class MapPoint;
+
+// Features of one left image; immutable once built.
+struct FrameFeatures {
+  static constexpr int kCellPx = 16;   // search grid cell (px)
+
+  std::vector<cv::KeyPoint> keypoints; // level-0 pixel coordinates; octave = pyramid level
+  cv::Mat descriptors;                 // CV_8U, 32 bytes a row
+  std::vector<float> u_right;          // column in the right image, -1 if no stereo match
+  std::vector<float> depth;            // stereo/RGB-D depth (m), -1 if none
+  std::vector<float> level_sigma2;     // squared scale of each pyramid level
+  std::vector<float> level_scale;      // scale of each pyramid level
+  int grid_cols = 0, grid_rows = 0;
+  std::vector<std::vector<int>> grid;  // feature indices per cell, row-major
+
+  size_t size() const { return keypoints.size(); }
+  void BuildGrid(int width, int height);
+  // Features within `radius` px of (u, v) whose level is in [min_level, max_level] (-1: any).
+  std::vector<int> InArea(double u, double v, double radius, int min_level = -1, int max_level = -1) const;
+  Eigen::Vector3d Unproject(const StereoCamera& cam, int i) const {
+    return cam.Unproject(keypoints[i].pt.x, keypoints[i].pt.y, depth[i]);
+  }
+};
+
+struct Frame {
+  int64_t t_ns = 0;
+  std::shared_ptr<const FrameFeatures> features;
+  std::vector<MapPoint*> points;       // matched map point per feature (nullptr: none)
+  std::vector<bool> outlier;           // rejected by pose optimisation
+  Eigen::Isometry3d T_c_w = Eigen::Isometry3d::Identity();  // world -> camera
+
+  void Reset(std::shared_ptr<const FrameFeatures> f) {
+    features = std::move(f);
+    points.assign(features->size(), nullptr);
+    outlier.assign(features->size(), false);
+  }
+  size_t size() const { return points.size(); }
+  Eigen::Vector3d Center() const { return T_c_w.inverse().translation(); }
+  int MatchedCount() const;
+};
+
+}  // namespace viqu::slam

@@ -1,0 +1,157 @@
+#include "slam/core/local_ba.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "slam/core/map.h"
+#include "slam/core/reprojection_cost.h"
+
+namespace viqu::slam {
+namespace {
+
+constexpr double kChi2Mono = 5.991;
+constexpr double kChi2Stereo = 7.815;
+
+struct Observation {
+  KeyFrame* kf;
+  MapPoint* point;
+  int idx;
+};
+
+double ObservationChi2(const StereoCamera& cam, const KeyFrame& kf, int idx, const Eigen::Vector3d& p_w) {
+  const FrameFeatures& f = *kf.features;
+  const Eigen::Vector3d pc = kf.T_c_w * p_w;
+  if (pc.z() <= 1e-3) return 1e9;
+  const cv::KeyPoint& kp = f.keypoints[idx];
+  const Eigen::Vector2d uv = cam.Project(pc);
+  double e2 = (uv - Eigen::Vector2d(kp.pt.x, kp.pt.y)).squaredNorm();
+  if (f.u_right[idx] >= 0) {
+    const double er = uv.x() - cam.bf / pc.z() - f.u_right[idx];
+    e2 += er * er;
+  }
+  return e2 / f.level_sigma2[kp.octave];
+}
+
+}  // namespace
+
+LocalBaResult LocalBundleAdjustment(const StereoCamera& cam, const LocalBaOptions& opt, KeyFrame* kf,
+                                    std::mutex* map_mutex) {
+  LocalBaResult res;
+  std::vector<KeyFrame*> local;
+  std::vector<MapPoint*> points;
+  std::vector<KeyFrame*> fixed;
+  std::vector<Observation> obs;
+  std::map<KeyFrame*, std::array<double, 6>> pose_params;
+  std::map<MapPoint*, std::array<double, 3>> point_params;
+  std::vector<double> obs_u, obs_v, obs_ur, obs_w;
+  {
+    std::lock_guard<std::mutex> lock(*map_mutex);
+    if (kf->bad) return res;
+    local.push_back(kf);
+    for (KeyFrame* n : kf->BestCovisible(opt.window - 1)) local.push_back(n);
+    const std::set<KeyFrame*> local_set(local.begin(), local.end());
+    std::set<MapPoint*> point_set;
+    for (KeyFrame* k : local) {
+      for (MapPoint* p : k->points) {
+        if (p && !p->bad && point_set.insert(p).second) points.push_back(p);
+      }
+    }
+    std::sort(points.begin(), points.end(), [](const MapPoint* a, const MapPoint* b) { return a->id < b->id; });
+    std::map<KeyFrame*, int> outside;  // keyframe -> observations of local points
+    for (MapPoint* p : points) {
+      for (const auto& [k, idx] : p->observations) {
+        if (!k->bad && !local_set.count(k)) ++outside[k];
+      }
+    }
+    std::vector<std::pair<int, KeyFrame*>> ranked;
+    for (const auto& [k, n] : outside) ranked.emplace_back(n, k);
+    std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+      return a.first != b.first ? a.first > b.first : a.second->id < b.second->id;
+    });
+    for (size_t i = 0; i < ranked.size() && static_cast<int>(i) < opt.max_fixed; ++i) fixed.push_back(ranked[i].second);
+    const std::set<KeyFrame*> fixed_set(fixed.begin(), fixed.end());
+    for (KeyFrame* k : local) PoseToParams(k->T_c_w, pose_params[k].data());
+    for (KeyFrame* k : fixed) PoseToParams(k->T_c_w, pose_params[k].data());
+    for (MapPoint* p : points) {
+      point_params[p] = {p->p_w.x(), p->p_w.y(), p->p_w.z()};
+      for (const auto& [k, idx] : p->observations) {
+        if (k->bad || (!local_set.count(k) && !fixed_set.count(k))) continue;
+        obs.push_back({k, p, idx});
+        const cv::KeyPoint& kp = k->features->keypoints[idx];
+        obs_u.push_back(kp.pt.x);
+        obs_v.push_back(kp.pt.y);
+        obs_ur.push_back(k->features->u_right[idx]);
+        obs_w.push_back(1.0 / k->features->level_scale[kp.octave]);
+      }
+    }
+  }
+  res.keyframes = static_cast<int>(local.size());
+  res.fixed_keyframes = static_cast<int>(fixed.size());
+  res.points = static_cast<int>(points.size());
+  res.observations = static_cast<int>(obs.size());
+  if (points.empty()) return res;
+
+  ceres::Problem::Options popt;
+  popt.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(popt);
+  ceres::HuberLoss huber_mono(opt.huber_px);
+  ceres::HuberLoss huber_stereo(opt.huber_px * std::sqrt(kChi2Stereo / kChi2Mono));
+  for (size_t i = 0; i < obs.size(); ++i) {
+    double* pose = pose_params[obs[i].kf].data();
+    double* pt = point_params[obs[i].point].data();
+    if (obs_ur[i] >= 0) {
+      auto* c = new ceres::AutoDiffCostFunction<StereoReprojectionCost, 3, 6, 3>(
+          new StereoReprojectionCost(cam, obs_u[i], obs_v[i], obs_ur[i], obs_w[i]));
+      problem.AddResidualBlock(c, &huber_stereo, pose, pt);
+    } else {
+      auto* c = new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 6, 3>(
+          new ReprojectionCost(cam, obs_u[i], obs_v[i], -1, obs_w[i]));
+      problem.AddResidualBlock(c, &huber_mono, pose, pt);
+    }
+  }
+  for (KeyFrame* k : fixed) {
+    if (problem.HasParameterBlock(pose_params[k].data())) problem.SetParameterBlockConstant(pose_params[k].data());
+  }
+  for (KeyFrame* k : local) {
+    if (k->fixed && problem.HasParameterBlock(pose_params[k].data())) problem.SetParameterBlockConstant(pose_params[k].data());
+  }
+  ceres::Solver::Options sopt;
+  sopt.linear_solver_type = ceres::DENSE_SCHUR;
+  sopt.max_num_iterations = opt.iterations;
+  sopt.num_threads = 1;
+  sopt.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(sopt, &problem, &summary);
+  res.initial_cost = summary.initial_cost;
+  res.final_cost = summary.final_cost;
+
+  std::lock_guard<std::mutex> lock(*map_mutex);
+  for (KeyFrame* k : local) {
+    if (!k->bad && !k->fixed) k->T_c_w = ParamsToPose(pose_params[k].data());
+  }
+  for (MapPoint* p : points) {
+    if (p->bad) continue;
+    const auto& q = point_params[p];
+    p->p_w = Eigen::Vector3d(q[0], q[1], q[2]);
+  }
+  for (const Observation& o : obs) {
+    if (o.point->bad || o.kf->bad) continue;
+    auto it = o.point->observations.find(o.kf);
+    if (it == o.point->observations.end() || it->second != o.idx) continue;
+    const double th = o.kf->features->u_right[o.idx] >= 0 ? kChi2Stereo : kChi2Mono;
+    if (ObservationChi2(cam, *o.kf, o.idx, o.point->p_w) > th) {
+      Map::EraseObservation(o.point, o.kf);
+      ++res.removed_observations;
+    }
+  }
+  for (MapPoint* p : points) {
+    if (!p->bad) p->UpdateFromObservations(cam);
+  }
+  return res;
+}
+
+}  // namespace viqu::slam

@@ -1,0 +1,186 @@
+#include "slam/core/map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace viqu::slam {
+
+int DescriptorDistance(const uint8_t* a, const uint8_t* b) {
+  int d = 0;
+  for (int i = 0; i < 32; i += 8) {
+    uint64_t x, y;
+    std::memcpy(&x, a + i, 8);
+    std::memcpy(&y, b + i, 8);
+    d += __builtin_popcountll(x ^ y);
+  }
+  return d;
+}
+
+int DescriptorDistance(const cv::Mat& a, const cv::Mat& b) { return DescriptorDistance(a.ptr<uint8_t>(), b.ptr<uint8_t>()); }
+
+void MapPoint::UpdateFromObservations(const StereoCamera& /*cam*/) {
+  if (observations.empty()) return;
+  // Descriptor: the one with the least median distance to the others.
+  std::vector<const uint8_t*> descs;
+  descs.reserve(observations.size());
+  for (const auto& [kf, idx] : observations) descs.push_back(kf->features->descriptors.ptr<uint8_t>(idx));
+  const size_t n = descs.size();
+  int best = 0, best_median = std::numeric_limits<int>::max();
+  for (size_t i = 0; i < n; ++i) {
+    std::vector<int> d;
+    d.reserve(n);
+    for (size_t j = 0; j < n; ++j) d.push_back(i == j ? 0 : DescriptorDistance(descs[i], descs[j]));
+    std::nth_element(d.begin(), d.begin() + (n - 1) / 2, d.end());
+    const int med = d[(n - 1) / 2];
+    if (med < best_median) {
+      best_median = med;
+      best = static_cast<int>(i);
+    }
+  }
+  auto it = observations.begin();
+  std::advance(it, best);
+  descriptor = it->first->features->descriptors.row(it->second);
+
+  Eigen::Vector3d nsum = Eigen::Vector3d::Zero();
+  for (const auto& [kf, idx] : observations) nsum += (p_w - kf->Center()).normalized();
+  normal = nsum.normalized();
+  const KeyFrame* ref = reference && !reference->bad && observations.count(reference) ? reference : observations.begin()->first;
+  const int ref_idx = observations.at(const_cast<KeyFrame*>(ref));
+  const double dist = (p_w - ref->Center()).norm();
+  const FrameFeatures& f = *ref->features;
+  const int level = f.keypoints[ref_idx].octave;
+  max_distance = dist * f.level_scale[level];
+  min_distance = max_distance / f.level_scale.back();
+}
+
+int MapPoint::PredictLevel(double dist, const FrameFeatures& f) const {
+  if (dist <= 0) return 0;
+  const double ratio = max_distance / dist;
+  const double log_scale = std::log(f.level_scale.size() > 1 ? f.level_scale[1] : 1.2);
+  const int level = static_cast<int>(std::ceil(std::log(ratio) / log_scale));
+  return std::clamp(level, 0, static_cast<int>(f.level_scale.size()) - 1);
+}
+
+KeyFrame::KeyFrame(int64_t id, const Frame& frame)
+    : id(id), t_ns(frame.t_ns), features(frame.features), points(frame.points), T_c_w(frame.T_c_w) {
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (frame.outlier[i] || (points[i] && points[i]->bad)) points[i] = nullptr;
+  }
+}
+
+std::vector<KeyFrame*> KeyFrame::BestCovisible(size_t n) const {
+  std::vector<std::pair<int, KeyFrame*>> v;
+  for (const auto& [kf, w] : covisible) {
+    if (!kf->bad) v.emplace_back(w, kf);
+  }
+  std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second->id < b.second->id;
+  });
+  std::vector<KeyFrame*> out;
+  for (size_t i = 0; i < v.size() && i < n; ++i) out.push_back(v[i].second);
+  return out;
+}
+
+void KeyFrame::UpdateConnections(int min_shared) {
+  std::map<KeyFrame*, int> counts;
+  for (MapPoint* p : points) {
+    if (!p || p->bad) continue;
+    for (const auto& [kf, idx] : p->observations) {
+      if (kf != this && !kf->bad) ++counts[kf];
+    }
+  }
+  for (auto& [kf, w] : covisible) kf->covisible.erase(this);
+  covisible.clear();
+  KeyFrame* best = nullptr;
+  int best_w = 0;
+  for (const auto& [kf, w] : counts) {
+    if (w > best_w) {
+      best_w = w;
+      best = kf;
+    }
+    if (w >= min_shared) covisible[kf] = w;
+  }
+  if (covisible.empty() && best) covisible[best] = best_w;
+  for (const auto& [kf, w] : covisible) kf->covisible[this] = w;
+}
+
+int KeyFrame::TrackedPoints(int min_observations) const {
+  int n = 0;
+  for (MapPoint* p : points) {
+    if (p && !p->bad && static_cast<int>(p->observations.size()) >= min_observations) ++n;
+  }
+  return n;
+}
+
+KeyFrame* Map::AddKeyFrame(const Frame& frame) {
+  keyframes_.push_back(std::make_unique<KeyFrame>(static_cast<int64_t>(keyframes_.size()), frame));
+  return keyframes_.back().get();
+}
+
+MapPoint* Map::AddPoint(const Eigen::Vector3d& p_w, KeyFrame* ref) {
+  points_.push_back(std::make_unique<MapPoint>(static_cast<int64_t>(points_.size()), p_w, ref));
+  points_.back()->first_keyframe_id = ref->id;
+  return points_.back().get();
+}
+
+void Map::AddObservation(MapPoint* p, KeyFrame* kf, int idx) {
+  p->observations[kf] = idx;
+  kf->points[idx] = p;
+}
+
+void Map::EraseObservation(MapPoint* p, KeyFrame* kf) {
+  auto it = p->observations.find(kf);
+  if (it == p->observations.end()) return;
+  if (kf->points[it->second] == p) kf->points[it->second] = nullptr;
+  p->observations.erase(it);
+  if (p->observations.empty()) p->bad = true;
+}
+
+void Map::ErasePoint(MapPoint* p) {
+  p->bad = true;
+  for (const auto& [kf, idx] : p->observations) {
+    if (kf->points[idx] == p) kf->points[idx] = nullptr;
+  }
+  p->observations.clear();
+}
+
+void Map::Replace(MapPoint* a, MapPoint* b) {
+  if (a == b || a->bad || b->bad) return;
+  for (const auto& [kf, idx] : a->observations) {
+    if (b->observations.count(kf)) {
+      kf->points[idx] = nullptr;
+    } else {
+      kf->points[idx] = b;
+      b->observations[kf] = idx;
+    }
+  }
+  b->visible += a->visible;
+  b->found += a->found;
+  a->observations.clear();
+  a->bad = true;
+}
+
+void Map::EraseKeyFrame(KeyFrame* kf, int min_shared) {
+  if (kf->fixed || kf->bad) return;
+  std::vector<KeyFrame*> neighbours;
+  for (const auto& [n, w] : kf->covisible) neighbours.push_back(n);
+  for (KeyFrame* n : neighbours) n->covisible.erase(kf);
+  kf->covisible.clear();
+  kf->bad = true;
+  for (size_t i = 0; i < kf->points.size(); ++i) {
+    if (MapPoint* p = kf->points[i]) EraseObservation(p, kf);
+  }
+  for (KeyFrame* n : neighbours) n->UpdateConnections(min_shared);
+}
+
+int Map::GoodKeyFrames() const {
+  return static_cast<int>(std::count_if(keyframes_.begin(), keyframes_.end(), [](const auto& k) { return !k->bad; }));
+}
+
+int Map::GoodPoints() const {
+  return static_cast<int>(std::count_if(points_.begin(), points_.end(), [](const auto& p) { return !p->bad; }));
+}
+
+}  // namespace viqu::slam

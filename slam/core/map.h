@@ -1,0 +1,94 @@
+#pragma once
+// The map: keyframes, map points and the covisibility between keyframes. The Map owns every
+// object; culled ones are flagged `bad` and stay allocated until the map is destroyed, so that
+// pointers held by frames never dangle. All access happens under Map::mutex.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <opencv2/core/mat.hpp>
+
+#include "slam/core/camera.h"
+#include "slam/core/frame.h"
+
+namespace viqu::slam {
+
+class KeyFrame;
+
+class MapPoint {
+ public:
+  MapPoint(int64_t id, const Eigen::Vector3d& p_w, KeyFrame* ref) : id(id), p_w(p_w), reference(ref) {}
+
+  int64_t id;
+  Eigen::Vector3d p_w;                     // position in world (m)
+  KeyFrame* reference;                     // keyframe that created it
+  std::map<KeyFrame*, int> observations;   // keyframe -> feature index (ordered by keyframe id)
+  cv::Mat descriptor;                      // the observation descriptor closest to all others
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // mean viewing direction (unit)
+  double min_distance = 0, max_distance = 0;         // scale-invariance range (m)
+  int visible = 1;                         // frames where it projected into the image
+  int found = 1;                           // frames where it was matched
+  int64_t first_keyframe_id = 0;
+  bool bad = false;
+
+  // Recomputes descriptor, normal and distance range from the observations.
+  void UpdateFromObservations(const StereoCamera& cam);
+  // Pyramid level expected at distance `dist`.
+  int PredictLevel(double dist, const FrameFeatures& f) const;
+  double FoundRatio() const { return static_cast<double>(found) / visible; }
+};
+
+class KeyFrame {
+ public:
+  KeyFrame(int64_t id, const Frame& frame);
+
+  int64_t id;
+  int64_t t_ns;
+  std::shared_ptr<const FrameFeatures> features;
+  std::vector<MapPoint*> points;           // map point per feature (nullptr: none)
+  Eigen::Isometry3d T_c_w;                 // world -> camera
+  std::map<KeyFrame*, int> covisible;      // keyframe -> shared map points (>= threshold, or the best)
+  bool bad = false;
+  bool fixed = false;                      // the first keyframe anchors the map
+
+  Eigen::Vector3d Center() const { return T_c_w.inverse().translation(); }
+  // Keyframes sharing the most points, best first, at most n.
+  std::vector<KeyFrame*> BestCovisible(size_t n) const;
+  // Recomputes `covisible` from the map points' observations and updates the neighbours' lists.
+  void UpdateConnections(int min_shared);
+  int TrackedPoints(int min_observations) const;
+};
+
+class Map {
+ public:
+  mutable std::mutex mutex;
+
+  KeyFrame* AddKeyFrame(const Frame& frame);
+  MapPoint* AddPoint(const Eigen::Vector3d& p_w, KeyFrame* ref);
+  static void AddObservation(MapPoint* p, KeyFrame* kf, int idx);
+  static void EraseObservation(MapPoint* p, KeyFrame* kf);
+  // Flags the point bad and removes it from every keyframe.
+  static void ErasePoint(MapPoint* p);
+  // Replaces `a` by `b` everywhere (duplicate fusion); `a` becomes bad.
+  static void Replace(MapPoint* a, MapPoint* b);
+  // Flags the keyframe bad, drops its observations and reconnects its neighbours.
+  void EraseKeyFrame(KeyFrame* kf, int min_shared);
+
+  const std::vector<std::unique_ptr<KeyFrame>>& keyframes() const { return keyframes_; }
+  const std::vector<std::unique_ptr<MapPoint>>& points() const { return points_; }
+  int GoodKeyFrames() const;
+  int GoodPoints() const;
+
+ private:
+  std::vector<std::unique_ptr<KeyFrame>> keyframes_;
+  std::vector<std::unique_ptr<MapPoint>> points_;
+};
+
+// Hamming distance of two 32-byte descriptors.
+int DescriptorDistance(const cv::Mat& a, const cv::Mat& b);
+int DescriptorDistance(const uint8_t* a, const uint8_t* b);
+
+}  // namespace viqu::slam

@@ -1,0 +1,96 @@
+#include "slam/core/pose_optimizer.h"
+
+#include <cmath>
+#include <vector>
+
+#include "slam/core/map.h"
+#include "slam/core/reprojection_cost.h"
+
+namespace viqu::slam {
+namespace {
+
+constexpr double kChi2Mono = 5.991;
+constexpr double kChi2Stereo = 7.815;
+
+struct Obs {
+  int idx;
+  bool stereo;
+  Eigen::Vector3d p_w;
+};
+
+double Chi2(const StereoCamera& cam, const FrameFeatures& f, const Obs& o, const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d pc = T * o.p_w;
+  if (pc.z() <= 1e-4) return 1e9;
+  const cv::KeyPoint& kp = f.keypoints[o.idx];
+  const Eigen::Vector2d uv = cam.Project(pc);
+  double e2 = (uv - Eigen::Vector2d(kp.pt.x, kp.pt.y)).squaredNorm();
+  if (o.stereo) {
+    const double er = uv.x() - cam.bf / pc.z() - f.u_right[o.idx];
+    e2 += er * er;
+  }
+  return e2 / f.level_sigma2[kp.octave];
+}
+
+}  // namespace
+
+int OptimizePose(const StereoCamera& cam, const PoseOptimizerOptions& opt, Frame* frame) {
+  const FrameFeatures& f = *frame->features;
+  std::vector<Obs> obs;
+  for (size_t i = 0; i < frame->size(); ++i) {
+    MapPoint* p = frame->points[i];
+    if (!p || p->bad) continue;
+    obs.push_back({static_cast<int>(i), f.u_right[i] >= 0, p->p_w});
+    frame->outlier[i] = false;
+  }
+  if (obs.size() < 3) return 0;
+
+  double q[6];
+  PoseToParams(frame->T_c_w, q);
+  const double huber_stereo = opt.huber_px * std::sqrt(kChi2Stereo / kChi2Mono);
+  int inliers = 0;
+  for (int round = 0; round < opt.rounds; ++round) {
+    ceres::Problem::Options popt;
+    popt.loss_function_ownership = ceres::TAKE_OWNERSHIP;
+    ceres::Problem problem(popt);
+    int used = 0;
+    for (const Obs& o : obs) {
+      if (frame->outlier[o.idx]) continue;
+      const cv::KeyPoint& kp = f.keypoints[o.idx];
+      const double inv_sigma = 1.0 / f.level_scale[kp.octave];
+      // The last round runs without the robust kernel (the inliers are settled by then).
+      const bool robust = round < opt.rounds - 1;
+      if (o.stereo) {
+        auto* c = new ceres::AutoDiffCostFunction<FixedPointCost<StereoReprojectionCost>, 3, 6>(
+            new FixedPointCost<StereoReprojectionCost>(
+                StereoReprojectionCost(cam, kp.pt.x, kp.pt.y, f.u_right[o.idx], inv_sigma), o.p_w));
+        problem.AddResidualBlock(c, robust ? new ceres::HuberLoss(huber_stereo) : nullptr, q);
+      } else {
+        auto* c = new ceres::AutoDiffCostFunction<FixedPointCost<ReprojectionCost>, 2, 6>(
+            new FixedPointCost<ReprojectionCost>(ReprojectionCost(cam, kp.pt.x, kp.pt.y, -1, inv_sigma), o.p_w));
+        problem.AddResidualBlock(c, robust ? new ceres::HuberLoss(opt.huber_px) : nullptr, q);
+      }
+      ++used;
+    }
+    if (used < 3) break;
+    ceres::Solver::Options sopt;
+    sopt.linear_solver_type = ceres::DENSE_QR;
+    sopt.max_num_iterations = opt.iterations;
+    sopt.num_threads = 1;
+    sopt.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(sopt, &problem, &summary);
+
+    const Eigen::Isometry3d T = ParamsToPose(q);
+    inliers = 0;
+    for (const Obs& o : obs) {
+      const double chi2 = Chi2(cam, f, o, T);
+      frame->outlier[o.idx] = chi2 > (o.stereo ? kChi2Stereo : kChi2Mono);
+      if (!frame->outlier[o.idx]) ++inliers;
+    }
+    if (inliers < 10) break;
+  }
+  frame->T_c_w = ParamsToPose(q);
+  return inliers;
+}
+
+}  // namespace viqu::slam

@@ -1,0 +1,508 @@
+#include "slam/core/tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <map>
+#include <set>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "common/errors.h"
+#include "slam/core/local_mapper.h"
+#include "slam/core/map.h"
+
+namespace viqu::slam {
+namespace {
+
+constexpr int kMinInitPoints = 100;    // stereo points needed to start a map
+constexpr int kMinNewKeyframePoints = 100;  // new keyframe: nearest stereo points made map points
+constexpr int kReinitialiseAfterLost = 20;  // lost frames before a new map segment is started
+
+MatcherOptions TrackerMatcherOptions(const SlamSettings& s) {
+  MatcherOptions m;
+  m.max_hamming = s.tracking.max_hamming;
+  m.ratio = s.tracking.match_ratio;
+  return m;
+}
+
+cv::Mat ToGrey(const cv::Mat& rgb) {
+  cv::Mat grey;
+  if (rgb.channels() == 3) {
+    cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
+  } else {
+    grey = rgb;
+  }
+  return grey;
+}
+
+}  // namespace
+
+Tracker::Tracker(const SlamSettings& settings, Map* map)
+    : settings_(settings), map_(map), extractor_(settings.orb), stereo_(settings.stereo) {
+  pose_opt_.rounds = settings.tracking.pose_iterations;
+  pose_opt_.huber_px = settings.tracking.huber_px;
+}
+
+Tracker::~Tracker() = default;
+
+void Tracker::SetCamera(const StereoFrame& frame) {
+  const PinholeIntrinsics& k = frame.intrinsics;
+  cam_.width = k.width;
+  cam_.height = k.height;
+  cam_.fx = k.fx;
+  cam_.fy = k.fy;
+  cam_.cx = k.cx;
+  cam_.cy = k.cy;
+  const bool rgbd = settings_.input == "rgbd";
+  const double baseline = rgbd ? settings_.rgbd_virtual_baseline_m : frame.baseline_m;
+  cam_.bf = k.fx * baseline;
+  cam_.close_depth_m = settings_.stereo.max_depth_baselines * baseline;
+  if (rgbd) cam_.close_depth_m = std::min(cam_.close_depth_m, settings_.rgbd_max_depth_m);
+  matcher_ = std::make_unique<Matcher>(cam_, TrackerMatcherOptions(settings_));
+  have_camera_ = true;
+}
+
+std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame) const {
+  auto f = std::make_shared<FrameFeatures>();
+  const bool rgbd = settings_.input == "rgbd";
+  const cv::Mat left = ToGrey(frame.left_rgb);
+  if (rgbd) {
+    extractor_.Extract(left, cv::Mat(), &f->keypoints, &f->descriptors);
+    f->u_right.assign(f->size(), -1.f);
+    f->depth.assign(f->size(), -1.f);
+    for (size_t i = 0; i < f->size(); ++i) {
+      const int u = static_cast<int>(std::lround(f->keypoints[i].pt.x));
+      const int v = static_cast<int>(std::lround(f->keypoints[i].pt.y));
+      if (u < 0 || v < 0 || u >= frame.left_depth_m.cols || v >= frame.left_depth_m.rows) continue;
+      const float d = frame.left_depth_m.at<float>(v, u);
+      if (!(d > 0.05f) || d > settings_.rgbd_max_depth_m) continue;
+      f->depth[i] = d;
+      f->u_right[i] = static_cast<float>(f->keypoints[i].pt.x - cam_.bf / d);
+    }
+  } else {
+    const cv::Mat right = ToGrey(frame.right_rgb);
+    std::vector<cv::KeyPoint> rk;
+    cv::Mat rd;
+    // The right image's features on a second thread: the two extractions are independent.
+    auto right_job = std::async(std::launch::async, [&] { extractor_.Extract(right, cv::Mat(), &rk, &rd); });
+    extractor_.Extract(left, cv::Mat(), &f->keypoints, &f->descriptors);
+    right_job.get();
+    const auto sm = stereo_.Match(left, right, f->keypoints, f->descriptors, rk, rd, cam_.fx, cam_.bf / cam_.fx);
+    f->u_right.assign(f->size(), -1.f);
+    f->depth.assign(f->size(), -1.f);
+    for (size_t i = 0; i < f->size(); ++i) {
+      if (sm[i].u_right < 0) continue;
+      const double disparity = f->keypoints[i].pt.x - sm[i].u_right;
+      if (disparity <= 0) continue;
+      const double depth = cam_.bf / disparity;
+      if (depth < settings_.stereo.min_depth_m) continue;
+      f->u_right[i] = sm[i].u_right;
+      f->depth[i] = static_cast<float>(depth);
+    }
+  }
+  const int levels = settings_.orb.num_levels;
+  for (int l = 0; l < levels; ++l) {
+    const double s = extractor_.ScaleOfLevel(l);
+    f->level_scale.push_back(static_cast<float>(s));
+    f->level_sigma2.push_back(static_cast<float>(s * s));
+  }
+  f->BuildGrid(cam_.width, cam_.height);
+  return f;
+}
+
+TrackResult Tracker::Track(const StereoFrame& frame, LocalMapper* mapper) {
+  if (frame.intrinsics.width != cam_.width || frame.intrinsics.height != cam_.height ||
+      frame.intrinsics.fx != cam_.fx) {
+    throw InputError("frame at t=" + std::to_string(frame.t_ns) + " ns has intrinsics that differ from the first frame's");
+  }
+  if (frame_index_ > 0 && frame.t_ns <= last_t_ns_) {
+    throw InputError("frame timestamps must increase: " + std::to_string(frame.t_ns) + " ns after " +
+                     std::to_string(last_t_ns_) + " ns");
+  }
+  TrackResult r;
+  r.t_ns = frame.t_ns;
+  auto features = ExtractFeatures(frame);
+  r.features = static_cast<int>(features->size());
+  for (float d : features->depth) r.stereo_points += d > 0 ? 1 : 0;
+
+  std::lock_guard<std::mutex> lock(map_->mutex);
+  temporary_.clear();
+  cur_ = Frame();
+  cur_.t_ns = frame.t_ns;
+  cur_.Reset(features);
+  ++frame_index_;
+  last_t_ns_ = frame.t_ns;
+
+  const bool reinitialise = initialised_ && lost_ && lost_frames_in_row_ >= kReinitialiseAfterLost;
+  if (!initialised_ || reinitialise) {
+    // A new map segment continues from the last estimate (dead reckoning through the outage).
+    cur_.T_c_w = initialised_ ? (have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w) : Eigen::Isometry3d::Identity();
+    if (Initialise(&r)) {
+      r.status = TrackStatus::kInitialised;
+      r.keyframe = true;
+      // A first keyframe has nothing to triangulate with; a new segment's goes to mapping.
+      if (reinitialise) pending_keyframe_ = map_->keyframes().back().get();
+    } else {
+      r.status = TrackStatus::kLost;
+      if (initialised_) ++lost_frames_in_row_;
+    }
+    r.T_w_c = cur_.T_c_w.inverse();
+    last_ = cur_;
+    return r;
+  }
+
+  bool ok = false;
+  if (!lost_) {
+    AddTemporaryPointsToLastFrame();
+    if (have_velocity_) ok = TrackWithMotionModel();
+    if (!ok) ok = TrackReferenceKeyFrame();
+  } else {
+    ok = Relocalise();
+    if (ok) last_reloc_frame_ = frame_index_;
+  }
+  int inliers = 0;
+  if (ok) {
+    inliers = TrackLocalMap();
+    const bool recently_relocalised = frame_index_ < last_reloc_frame_ + 20;
+    const int need = recently_relocalised ? std::max(settings_.tracking.min_inliers, 50) : settings_.tracking.min_inliers;
+    ok = inliers >= need;
+  }
+  r.inliers = inliers;
+  if (ok) {
+    r.status = lost_ ? TrackStatus::kRelocalised : TrackStatus::kTracking;
+    if (have_velocity_ || !lost_) {
+      velocity_ = cur_.T_c_w * last_.T_c_w.inverse();
+      have_velocity_ = true;
+    }
+    lost_ = false;
+    lost_frames_in_row_ = 0;
+    DropTemporaryPoints(&cur_);
+    if (NeedKeyFrame(inliers, mapper)) {
+      KeyFrame* kf = CreateKeyFrame(mapper);
+      r.keyframe = kf != nullptr;
+    }
+  } else {
+    r.status = TrackStatus::kLost;
+    lost_ = true;
+    ++lost_frames_in_row_;
+    // No visual pose: carry the motion-model prediction so that the trajectory has no gap.
+    cur_.T_c_w = have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w;
+    DropTemporaryPoints(&cur_);
+    std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
+  }
+  // Outliers are forgotten before the frame becomes the last frame.
+  for (size_t i = 0; i < cur_.size(); ++i) {
+    if (cur_.outlier[i]) {
+      cur_.points[i] = nullptr;
+      cur_.outlier[i] = false;
+    }
+  }
+  r.T_w_c = cur_.T_c_w.inverse();
+  last_ = cur_;
+  return r;
+}
+
+bool Tracker::Initialise(TrackResult* r) {
+  (void)r;
+  const FrameFeatures& f = *cur_.features;
+  int with_depth = 0;
+  for (float d : f.depth) with_depth += d > 0 ? 1 : 0;
+  if (with_depth < kMinInitPoints) return false;
+  KeyFrame* kf = map_->AddKeyFrame(cur_);
+  if (!initialised_) kf->fixed = true;
+  const Eigen::Isometry3d T_w_c = cur_.T_c_w.inverse();
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (f.depth[i] <= 0) continue;
+    MapPoint* p = map_->AddPoint(T_w_c * f.Unproject(cam_, static_cast<int>(i)), kf);
+    Map::AddObservation(p, kf, static_cast<int>(i));
+    p->UpdateFromObservations(cam_);
+    cur_.points[i] = p;
+  }
+  initialised_ = true;
+  lost_ = false;
+  lost_frames_in_row_ = 0;
+  have_velocity_ = false;
+  reference_ = kf;
+  last_keyframe_frame_ = frame_index_;
+  local_keyframes_ = {kf};
+  return true;
+}
+
+void Tracker::AddTemporaryPointsToLastFrame() {
+  // As ORB-SLAM does for stereo: the last frame's close stereo features without a map point get
+  // temporary points, so that the motion-model search has enough to match.
+  const FrameFeatures& f = *last_.features;
+  std::vector<std::pair<float, int>> by_depth;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (f.depth[i] > 0) by_depth.emplace_back(f.depth[i], static_cast<int>(i));
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  const Eigen::Isometry3d T_w_c = last_.T_c_w.inverse();
+  int added = 0;
+  for (const auto& [d, i] : by_depth) {
+    if (last_.points[i] && !last_.points[i]->bad) {
+      if (d > cam_.close_depth_m && added > kMinNewKeyframePoints) break;
+      continue;
+    }
+    auto p = std::make_unique<MapPoint>(-1, T_w_c * f.Unproject(cam_, i), nullptr);
+    p->descriptor = f.descriptors.row(i);
+    last_.points[i] = p.get();
+    last_.outlier[i] = false;
+    temporary_.push_back(std::move(p));
+    ++added;
+    if (d > cam_.close_depth_m && added > kMinNewKeyframePoints) break;
+  }
+}
+
+void Tracker::DropTemporaryPoints(Frame* f) const {
+  for (auto& p : f->points) {
+    if (p && p->id < 0) p = nullptr;
+  }
+}
+
+bool Tracker::TrackWithMotionModel() {
+  cur_.T_c_w = velocity_ * last_.T_c_w;
+  std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
+  const double radius = settings_.tracking.motion_search_px;
+  int n = matcher_->SearchByProjection(last_, radius, &cur_);
+  if (n < settings_.tracking.min_inliers_motion) {
+    std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
+    n = matcher_->SearchByProjection(last_, 2 * radius, &cur_);
+  }
+  if (n < settings_.tracking.min_inliers_motion) return false;
+  const int inliers = OptimizePose(cam_, pose_opt_, &cur_);
+  for (size_t i = 0; i < cur_.size(); ++i) {
+    if (cur_.outlier[i]) {
+      cur_.points[i] = nullptr;
+      cur_.outlier[i] = false;
+    }
+  }
+  return inliers >= 10;
+}
+
+bool Tracker::TrackReferenceKeyFrame() {
+  if (!reference_ || reference_->bad) {
+    for (auto it = map_->keyframes().rbegin(); it != map_->keyframes().rend(); ++it) {
+      if (!(*it)->bad) {
+        reference_ = it->get();
+        break;
+      }
+    }
+  }
+  std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
+  const int n = matcher_->SearchByDescriptor(*reference_, &cur_);
+  if (n < 15) return false;
+  cur_.T_c_w = last_.T_c_w;
+  const int inliers = OptimizePose(cam_, pose_opt_, &cur_);
+  for (size_t i = 0; i < cur_.size(); ++i) {
+    if (cur_.outlier[i]) {
+      cur_.points[i] = nullptr;
+      cur_.outlier[i] = false;
+    }
+  }
+  return inliers >= 10;
+}
+
+int Tracker::TrackLocalMap() {
+  // Local keyframes: those that see the frame's points, then their best neighbours.
+  std::map<KeyFrame*, int> counter;
+  for (size_t i = 0; i < cur_.size(); ++i) {
+    MapPoint* p = cur_.points[i];
+    if (!p || p->bad || p->id < 0) continue;
+    for (const auto& [kf, idx] : p->observations) {
+      if (!kf->bad) ++counter[kf];
+    }
+  }
+  std::vector<std::pair<int, KeyFrame*>> ranked;
+  for (const auto& [kf, n] : counter) ranked.emplace_back(n, kf);
+  std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second->id > b.second->id;
+  });
+  const size_t max_kfs = static_cast<size_t>(settings_.tracking.local_keyframes);
+  std::vector<KeyFrame*> local;
+  std::set<KeyFrame*> in_local;
+  for (const auto& [n, kf] : ranked) {
+    if (local.size() >= max_kfs) break;
+    if (in_local.insert(kf).second) local.push_back(kf);
+  }
+  if (!ranked.empty()) reference_ = ranked.front().second;
+  const size_t direct = local.size();
+  for (size_t i = 0; i < direct && local.size() < max_kfs; ++i) {
+    for (KeyFrame* n : local[i]->BestCovisible(5)) {
+      if (local.size() >= max_kfs) break;
+      if (in_local.insert(n).second) local.push_back(n);
+    }
+  }
+  if (local.empty() && reference_ && !reference_->bad) local.push_back(reference_);
+  local_keyframes_ = local;
+
+  std::set<MapPoint*> seen;
+  local_points_.clear();
+  for (KeyFrame* kf : local) {
+    for (MapPoint* p : kf->points) {
+      if (p && !p->bad && seen.insert(p).second) local_points_.push_back(p);
+    }
+  }
+  for (size_t i = 0; i < cur_.size(); ++i) {
+    if (cur_.points[i] && !cur_.points[i]->bad) ++cur_.points[i]->visible;
+  }
+  matcher_->SearchLocalPoints(local_points_, settings_.tracking.local_map_search_px, &cur_);
+  const int inliers = OptimizePose(cam_, pose_opt_, &cur_);
+  for (size_t i = 0; i < cur_.size(); ++i) {
+    MapPoint* p = cur_.points[i];
+    if (p && !cur_.outlier[i] && !p->bad) ++p->found;
+  }
+  return inliers;
+}
+
+bool Tracker::Relocalise() {
+  // Candidates: the most recent keyframes and those nearest the last good position.
+  const Eigen::Vector3d last_center = last_.Center();
+  std::vector<KeyFrame*> good;
+  for (const auto& kf : map_->keyframes()) {
+    if (!kf->bad) good.push_back(kf.get());
+  }
+  std::vector<KeyFrame*> cands;
+  std::set<KeyFrame*> chosen;
+  for (auto it = good.rbegin(); it != good.rend() && cands.size() < 15; ++it) {
+    if (chosen.insert(*it).second) cands.push_back(*it);
+  }
+  std::vector<KeyFrame*> by_distance = good;
+  std::sort(by_distance.begin(), by_distance.end(), [&](KeyFrame* a, KeyFrame* b) {
+    const double da = (a->Center() - last_center).squaredNorm(), db = (b->Center() - last_center).squaredNorm();
+    return da != db ? da < db : a->id < b->id;
+  });
+  for (size_t i = 0; i < by_distance.size() && cands.size() < 30; ++i) {
+    if (chosen.insert(by_distance[i]).second) cands.push_back(by_distance[i]);
+  }
+  for (KeyFrame* kf : cands) {
+    std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
+    std::fill(cur_.outlier.begin(), cur_.outlier.end(), false);
+    const int n = matcher_->SearchByDescriptor(*kf, &cur_);
+    if (n < 15) continue;
+    std::vector<cv::Point3f> obj;
+    std::vector<cv::Point2f> img;
+    std::vector<int> idx;
+    for (size_t i = 0; i < cur_.size(); ++i) {
+      if (!cur_.points[i]) continue;
+      const Eigen::Vector3d& p = cur_.points[i]->p_w;
+      obj.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+      img.push_back(cur_.features->keypoints[i].pt);
+      idx.push_back(static_cast<int>(i));
+    }
+    const cv::Matx33d K(cam_.fx, 0, cam_.cx, 0, cam_.fy, cam_.cy, 0, 0, 1);
+    cv::Mat rvec, tvec;
+    std::vector<int> inl;
+    cv::setRNGSeed(static_cast<int>(kf->id) + 1);  // deterministic RANSAC
+    if (!cv::solvePnPRansac(obj, img, K, cv::noArray(), rvec, tvec, false, 200, 4.0f, 0.99, inl,
+                            cv::SOLVEPNP_EPNP) ||
+        static_cast<int>(inl.size()) < 12) {
+      continue;
+    }
+    cv::Mat R;
+    cv::Rodrigues(rvec, R);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) T.linear()(a, b) = R.at<double>(a, b);
+      T.translation()(a) = tvec.at<double>(a);
+    }
+    std::vector<bool> keep(cur_.size(), false);
+    for (int k : inl) keep[idx[k]] = true;
+    for (size_t i = 0; i < cur_.size(); ++i) {
+      if (!keep[i]) cur_.points[i] = nullptr;
+    }
+    cur_.T_c_w = T;
+    int inliers = OptimizePose(cam_, pose_opt_, &cur_);
+    if (inliers < 10) continue;
+    // More matches from the candidate's neighbourhood, then the pose again.
+    std::vector<MapPoint*> pts;
+    std::set<MapPoint*> seen;
+    std::vector<KeyFrame*> hood = kf->BestCovisible(10);
+    hood.push_back(kf);
+    for (KeyFrame* h : hood) {
+      for (MapPoint* p : h->points) {
+        if (p && !p->bad && seen.insert(p).second) pts.push_back(p);
+      }
+    }
+    for (size_t i = 0; i < cur_.size(); ++i) {
+      if (cur_.outlier[i]) cur_.points[i] = nullptr;
+    }
+    matcher_->SearchLocalPoints(pts, 10.0, &cur_);
+    inliers = OptimizePose(cam_, pose_opt_, &cur_);
+    if (inliers >= settings_.tracking.relocalise_min_inliers) {
+      reference_ = kf;
+      have_velocity_ = false;
+      for (size_t i = 0; i < cur_.size(); ++i) {
+        if (cur_.outlier[i]) {
+          cur_.points[i] = nullptr;
+          cur_.outlier[i] = false;
+        }
+      }
+      return true;
+    }
+  }
+  std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
+  std::fill(cur_.outlier.begin(), cur_.outlier.end(), false);
+  return false;
+}
+
+bool Tracker::NeedKeyFrame(int inliers, LocalMapper* mapper) const {
+  const int64_t since = frame_index_ - last_keyframe_frame_;
+  if (since < settings_.tracking.keyframe_min_frames) return false;
+  if (frame_index_ < last_reloc_frame_ + 20 && map_->GoodKeyFrames() > 20) return false;
+  const int min_obs = map_->GoodKeyFrames() <= 2 ? 2 : 3;
+  const int ref_matches = reference_ ? reference_->TrackedPoints(min_obs) : 0;
+  const FrameFeatures& f = *cur_.features;
+  int tracked_close = 0, untracked_close = 0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (f.depth[i] <= 0 || f.depth[i] > cam_.close_depth_m) continue;
+    if (cur_.points[i] && !cur_.outlier[i]) {
+      ++tracked_close;
+    } else {
+      ++untracked_close;
+    }
+  }
+  const bool need_close = tracked_close < 100 && untracked_close > settings_.tracking.close_points_min;
+  const bool mapper_idle = !mapper || mapper->Queued() == 0;
+  const bool c1a = since >= settings_.tracking.keyframe_max_frames;
+  const bool c1b = mapper_idle;
+  const bool c1c = inliers < 0.25 * ref_matches || need_close;
+  const bool c2 = (inliers < settings_.tracking.keyframe_ratio * ref_matches || need_close) && inliers > 15;
+  if (!((c1a || c1b || c1c) && c2)) return false;
+  // Real-time mode: when mapping is behind, only a keyframe that is really needed is queued.
+  return mapper_idle || (mapper && mapper->Queued() < 3);
+}
+
+KeyFrame* Tracker::CreateKeyFrame(LocalMapper* mapper) {
+  KeyFrame* kf = map_->AddKeyFrame(cur_);
+  reference_ = kf;
+  last_keyframe_frame_ = frame_index_;
+  // New map points from the nearest stereo features that have none: all the close ones, and at
+  // least the nearest kMinNewKeyframePoints.
+  const FrameFeatures& f = *kf->features;
+  std::vector<std::pair<float, int>> by_depth;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (f.depth[i] > 0) by_depth.emplace_back(f.depth[i], static_cast<int>(i));
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  const Eigen::Isometry3d T_w_c = kf->T_c_w.inverse();
+  std::vector<MapPoint*> created;
+  int considered = 0;
+  for (const auto& [d, i] : by_depth) {
+    if (d > cam_.close_depth_m && considered > kMinNewKeyframePoints) break;
+    ++considered;
+    if (kf->points[i]) continue;
+    MapPoint* p = map_->AddPoint(T_w_c * f.Unproject(cam_, i), kf);
+    Map::AddObservation(p, kf, i);
+    p->UpdateFromObservations(cam_);
+    cur_.points[i] = p;
+    created.push_back(p);
+  }
+  if (mapper) mapper->AddRecentPoints(created);
+  pending_keyframe_ = kf;
+  return kf;
+}
+
+}  // namespace viqu::slam

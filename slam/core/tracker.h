@@ -1,0 +1,81 @@
+#pragma once
+// Tracking: features of each frame, its pose against the map (constant-velocity motion model,
+// reference keyframe as fallback, then the local map), outlier rejection, the keyframe
+// decision, and relocalisation when lost.
+#include <memory>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "slam/core/camera.h"
+#include "slam/core/frame.h"
+#include "slam/core/matcher.h"
+#include "slam/core/pose_optimizer.h"
+#include "slam/core/slam_system.h"
+#include "slam/features/orb_extractor.h"
+#include "slam/features/stereo_matcher.h"
+
+namespace viqu::slam {
+
+class KeyFrame;
+class LocalMapper;
+class Map;
+class MapPoint;
+
+class Tracker {
+ public:
+  Tracker(const SlamSettings& settings, Map* map);
+  ~Tracker();
+
+  // Tracks one frame under the map mutex. The camera model is fixed by SetCamera() from the
+  // first frame; later frames must have the same intrinsics. `mapper` (may be null) is asked whether it is idle
+  // and is told about new stereo points; a new keyframe is handed over by TakePendingKeyFrame()
+  // after Track() returns, outside the lock.
+  TrackResult Track(const StereoFrame& frame, LocalMapper* mapper);
+  KeyFrame* TakePendingKeyFrame() {
+    KeyFrame* kf = pending_keyframe_;
+    pending_keyframe_ = nullptr;
+    return kf;
+  }
+
+  bool HasCamera() const { return have_camera_; }
+  const StereoCamera& camera() const { return cam_; }
+  void SetCamera(const StereoFrame& frame);
+
+ private:
+  std::shared_ptr<FrameFeatures> ExtractFeatures(const StereoFrame& frame) const;
+  bool Initialise(TrackResult* r);
+  void AddTemporaryPointsToLastFrame();
+  bool TrackWithMotionModel();
+  bool TrackReferenceKeyFrame();
+  int TrackLocalMap();
+  bool Relocalise();
+  bool NeedKeyFrame(int inliers, LocalMapper* mapper) const;
+  KeyFrame* CreateKeyFrame(LocalMapper* mapper);
+  void DropTemporaryPoints(Frame* f) const;
+
+  SlamSettings settings_;
+  Map* map_;
+  OrbExtractor extractor_;
+  StereoMatcher stereo_;
+  StereoCamera cam_;
+  bool have_camera_ = false;
+  std::unique_ptr<Matcher> matcher_;
+  PoseOptimizerOptions pose_opt_;
+
+  Frame cur_, last_;
+  bool initialised_ = false;
+  bool lost_ = false;
+  int lost_frames_in_row_ = 0;
+  Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  // T_cur_last of the last step
+  bool have_velocity_ = false;
+  KeyFrame* reference_ = nullptr;
+  KeyFrame* pending_keyframe_ = nullptr;
+  int64_t frame_index_ = 0, last_keyframe_frame_ = 0, last_reloc_frame_ = -1000;
+  int64_t last_t_ns_ = 0;
+  std::vector<std::unique_ptr<MapPoint>> temporary_;  // visual-odometry points of the last frame
+  std::vector<KeyFrame*> local_keyframes_;
+  std::vector<MapPoint*> local_points_;
+};
+
+}  // namespace viqu::slam
