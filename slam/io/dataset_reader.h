@@ -1,0 +1,38 @@
+#pragma once
+// The interface of every offline dataset: frames in time order plus what is known about them.
+// `viqu slam DIR --format viqu|euroc|tum` opens one through OpenDataset (open_dataset.h).
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "slam/measurements/ground_truth_pose.h"
+#include "slam/measurements/stereo_frame.h"
+
+namespace viqu::io {
+
+class DatasetReader {
+ public:
+  virtual ~DatasetReader() = default;
+
+  // Fills `frame` with the next frame (every field reset; images rectified pinhole, RGB) and
+  // returns true, or returns false after the last one. Stamps strictly increase. A frame whose
+  // images cannot be read is skipped with a warning on stderr when earlier frames were read and
+  // the frame before it was fine; otherwise Next throws InputError naming the file.
+  virtual bool Next(StereoFrame* frame) = 0;
+
+  // Frames the dataset lists (after left/right and rgb/depth association), skipped ones included.
+  virtual size_t NumFrames() const = 0;
+  // Rectified pinhole intrinsics of the frames handed out (left camera; the right one is equal).
+  virtual const PinholeIntrinsics& intrinsics() const = 0;
+  // Right camera at +baseline along the left camera's x axis (m); 0 for RGB-D (no right image).
+  virtual double baseline_m() const = 0;
+  // Frames carry left_depth_m (metric depth along the optical axis, 0 = no depth).
+  virtual bool HasDepth() const = 0;
+  // Frames carry left_instance_id and instances.
+  virtual bool HasSegmentation() const = 0;
+  // Ground truth of the left camera's (rectified) optical frame in the world, TUM-like: its own
+  // stamps, which need not match the frames'; nullopt when the dataset has none.
+  virtual const std::optional<std::vector<StampedPose>>& ground_truth() const = 0;
+};
+
+}  // namespace viqu::io

@@ -1,0 +1,17 @@
+#include "slam/io/frame_skip_policy.h"
+
+#include <cstdio>
+
+#include "common/errors.h"
+
+namespace viqu::io {
+
+void FrameSkipPolicy::Bad(const std::string& why) {
+  if (!any_good_) throw InputError(why + "; the first frame is not skipped: check the dataset");
+  if (last_bad_) throw InputError(why + "; the second unreadable frame in a row: the dataset looks broken");
+  last_bad_ = true;
+  ++skipped_;
+  std::fprintf(stderr, "viqu: warning: %s; frame skipped\n", why.c_str());
+}
+
+}  // namespace viqu::io

@@ -1,0 +1,28 @@
+#pragma once
+#include <string>
+
+namespace viqu::io {
+
+// What a reader does with a frame whose image files cannot be read. A single bad frame among
+// good ones (a truncated file in a long sequence) is skipped with a warning on stderr; a bad
+// first frame, or two bad frames in a row, point at a broken dataset: InputError.
+class FrameSkipPolicy {
+ public:
+  // The frame was read.
+  void Good() {
+    any_good_ = true;
+    last_bad_ = false;
+  }
+  // The frame cannot be read (`why` names the file): warns and returns (the caller skips the
+  // frame), or throws InputError(why + ...).
+  void Bad(const std::string& why);
+
+  int skipped() const { return skipped_; }
+
+ private:
+  bool any_good_ = false;  // a frame was read
+  bool last_bad_ = false;  // the frame before this one could not be read
+  int skipped_ = 0;        // frames skipped so far
+};
+
+}  // namespace viqu::io

@@ -1,0 +1,35 @@
+#include "slam/io/open_dataset.h"
+
+#include "common/errors.h"
+#include "slam/io/euroc_dataset_reader.h"
+#include "slam/io/tum_dataset_reader.h"
+#include "slam/io/viqu_dataset_reader.h"
+
+namespace viqu::io {
+
+DatasetFormat ParseDatasetFormat(const std::string& name) {
+  if (name == "viqu") return DatasetFormat::kViqu;
+  if (name == "euroc") return DatasetFormat::kEuroc;
+  if (name == "tum") return DatasetFormat::kTum;
+  throw InputError("unknown dataset format '" + name + "' (expected one of: viqu, euroc, tum)");
+}
+
+const char* DatasetFormatName(DatasetFormat format) {
+  switch (format) {
+    case DatasetFormat::kViqu: return "viqu";
+    case DatasetFormat::kEuroc: return "euroc";
+    case DatasetFormat::kTum: return "tum";
+  }
+  return "unknown";
+}
+
+std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format) {
+  switch (format) {
+    case DatasetFormat::kViqu: return std::make_unique<ViquDatasetReader>(dir);
+    case DatasetFormat::kEuroc: return std::make_unique<EurocDatasetReader>(dir);
+    case DatasetFormat::kTum: return std::make_unique<TumDatasetReader>(dir);
+  }
+  throw InputError("unknown dataset format");
+}
+
+}  // namespace viqu::io

@@ -1,0 +1,22 @@
+#pragma once
+#include <memory>
+#include <string>
+
+#include "slam/io/dataset_reader.h"
+
+namespace viqu::io {
+
+enum class DatasetFormat {
+  kViqu,   // a run folder recorded by `viqu run --record` (RUN/ or RUN/dataset/)
+  kEuroc,  // EuRoC MAV (mav0/cam0, cam1), rectified on reading
+  kTum,    // TUM RGB-D (rgb.txt, depth.txt, groundtruth.txt)
+};
+
+// "viqu", "euroc", "tum". Anything else: InputError listing the choices.
+DatasetFormat ParseDatasetFormat(const std::string& name);
+const char* DatasetFormatName(DatasetFormat format);
+
+// Opens the dataset in `dir`. Missing or malformed input: InputError naming the file.
+std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format);
+
+}  // namespace viqu::io

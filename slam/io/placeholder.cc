@@ -1,1 +1,0 @@
-// Placeholder until the dataset readers land; removed with them.

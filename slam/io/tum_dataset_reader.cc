@@ -1,0 +1,76 @@
+#include "slam/io/tum_dataset_reader.h"
+
+#include <filesystem>
+#include <utility>
+
+#include "common/errors.h"
+#include "slam/eval/trajectory.h"
+#include "slam/io/image_files.h"
+
+namespace viqu::io {
+
+namespace fs = std::filesystem;
+
+TumDatasetReader::TumDatasetReader(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw InputError(dir + ": dataset folder not found");
+  const fs::path d(dir);
+  camera_ = ReadTumCamera(dir);
+  if (!HasNoDistortion(camera_.calibration)) undistorter_ = std::make_unique<ImageUndistorter>(camera_.calibration);
+
+  const std::string rgb_txt = (d / "rgb.txt").string(), depth_txt = (d / "depth.txt").string();
+  const std::vector<ImageEntry> rgb = ReadTumImageList(rgb_txt, dir);
+  const std::vector<ImageEntry> depth = ReadTumImageList(depth_txt, dir);
+  if (rgb.empty()) throw InputError(rgb_txt + ": no images listed (empty dataset)");
+  if (depth.empty()) throw InputError(depth_txt + ": no images listed (empty dataset)");
+  frames_ = PairNearestStamps(rgb, depth, kTumMaxRgbDepthDiffS, rgb_txt, depth_txt);
+  if (frames_.empty()) {
+    throw InputError(rgb_txt + ": no colour image has a depth image in " + depth_txt + " within 0.02 s");
+  }
+  const fs::path gt = d / "groundtruth.txt";
+  if (fs::exists(gt, ec)) ground_truth_ = eval::ReadTumTrajectory(gt.string());
+}
+
+bool TumDatasetReader::ReadFrame(const ImagePair& files, StereoFrame* frame, std::string* why) const {
+  const PinholeIntrinsics& k = camera_.calibration.pinhole;
+  cv::Mat rgb = ReadImage8(files.a, why);
+  if (rgb.empty()) return false;
+  cv::Mat depth = ReadImage16(files.b, why);
+  if (depth.empty()) return false;
+  for (const auto& [image, path] : {std::pair{&rgb, &files.a}, std::pair{&depth, &files.b}}) {
+    if (image->cols != k.width || image->rows != k.height) {
+      throw InputError(*path + ": image is " + std::to_string(image->cols) + "x" + std::to_string(image->rows) +
+                       ", the camera (" + camera_.source + ") is " + std::to_string(k.width) + "x" +
+                       std::to_string(k.height));
+    }
+  }
+  if (undistorter_) {
+    rgb = undistorter_->Colour(rgb);
+    depth = undistorter_->Depth(depth);
+  }
+  *frame = StereoFrame();
+  frame->t_ns = files.t_ns;
+  frame->left_rgb = ToRgb(rgb);
+  frame->left_depth_m = DepthToMetres(depth, 1.0 / camera_.depth_scale);
+  frame->intrinsics = k;
+  frame->baseline_m = 0;
+  return true;
+}
+
+bool TumDatasetReader::Next(StereoFrame* frame) {
+  while (next_ < frames_.size()) {
+    const ImagePair& files = frames_[next_++];
+    std::string why;
+    StereoFrame f;  // *frame stays untouched by a frame that is skipped
+    if (!ReadFrame(files, &f, &why)) {
+      skip_.Bad(why);
+      continue;
+    }
+    *frame = std::move(f);
+    skip_.Good();
+    return true;
+  }
+  return false;
+}
+
+}  // namespace viqu::io
