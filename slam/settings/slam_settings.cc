@@ -1,2 +1,232 @@
-// Placeholder; the strict loader replaces it.
 #include "slam/settings/slam_settings.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include <yaml-cpp/yaml.h>
+
+#include "common/yaml_strict.h"
+
+namespace viqu::slam {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kInputs = {"stereo", "rgbd"};
+const std::vector<std::string> kMappingModes = {"sync", "realtime"};
+
+// Ranges shared by several keys.
+const NumberRange kRatio = NumberRange::OpenClosed(0, 1);        // a share or a ratio test, (0, 1]
+const NumberRange kHamming = NumberRange::Closed(1, 256);        // ORB descriptors have 256 bits
+const NumberRange kPyramidScale = NumberRange::OpenClosed(1, 4); // between pyramid levels
+const NumberRange kGrey = NumberRange::Closed(1, 255);           // FAST thresholds (grey levels)
+// Counts (features, keyframes, frames, iterations) get a finite upper bound: an integer range
+// without one reads "an integer in [1, 2.14748e+09]" in messages.
+constexpr double kMaxCount = 100000;
+const NumberRange kCount0 = NumberRange::Closed(0, kMaxCount);
+const NumberRange kCount1 = NumberRange::Closed(1, kMaxCount);
+const NumberRange kCount3 = NumberRange::Closed(3, kMaxCount);  // a pose needs at least 3 points
+
+// Fails at `a_key` of `a` when it is in the file (or came from --set), otherwise at `b_key` of
+// `b`; with neither present the message names the file alone.
+[[noreturn]] void FailAtEither(YamlMapReader* a, const std::string& a_key, YamlMapReader* b,
+                               const std::string& b_key, const std::string& message) {
+  const bool at_a = a->Has(a_key) || !b->Has(b_key);  // a and b may be the same map
+  YamlMapReader* m = at_a ? a : b;
+  const std::string& key = at_a ? a_key : b_key;
+  m->source().Fail(m->KeyPath(key), m->Get(key), message);
+}
+
+void ReadOrb(YamlMapReader* m, OrbExtractorOptions* o) {
+  m->Integer("num_features", &o->num_features, kCount1);
+  m->Number("scale_factor", &o->scale_factor, kPyramidScale);
+  m->Integer("num_levels", &o->num_levels, NumberRange::Closed(1, 32));
+  m->Integer("fast_threshold", &o->fast_threshold, kGrey);
+  m->Integer("fast_threshold_min", &o->fast_threshold_min, kGrey);
+  m->Integer("cell_px", &o->cell_px, NumberRange::Closed(8, 4096));
+  m->RejectUnknownKeys();
+  if (o->fast_threshold_min > o->fast_threshold) {
+    FailAtEither(m, "fast_threshold_min", m, "fast_threshold",
+                 "key '" + m->KeyPath("fast_threshold_min") + "' (" + std::to_string(o->fast_threshold_min) +
+                     ") must not exceed '" + m->KeyPath("fast_threshold") + "' (" +
+                     std::to_string(o->fast_threshold) + "): it is the retry threshold for cells that found nothing");
+  }
+}
+
+void ReadStereo(YamlMapReader* m, StereoMatcherOptions* s) {
+  m->Integer("max_hamming", &s->max_hamming, kHamming);
+  m->Number("row_band_px", &s->row_band_px, NumberRange::Closed(0, 100));
+  m->Integer("sad_half_window", &s->sad_half_window, NumberRange::Closed(1, 50));
+  m->Integer("sad_search_px", &s->sad_search_px, NumberRange::Closed(0, 200));
+  m->Number("max_ratio", &s->max_ratio, kRatio);
+  m->Number("min_depth_m", &s->min_depth_m, NumberRange::Positive());
+  m->Number("max_depth_baselines", &s->max_depth_baselines, NumberRange::Positive());
+  m->Number("scale_factor", &s->scale_factor, kPyramidScale);
+  m->Number("sad_outlier_factor", &s->sad_outlier_factor, NumberRange::AtLeast(1));
+  m->Number("sad_uniqueness", &s->sad_uniqueness, kRatio);
+  m->RejectUnknownKeys();
+}
+
+void ReadTracking(YamlMapReader* m, TrackingSettings* t) {
+  m->Number("motion_search_px", &t->motion_search_px, NumberRange::OpenClosed(0, 1000));
+  m->Number("local_map_search_px", &t->local_map_search_px, NumberRange::OpenClosed(0, 1000));
+  m->Integer("max_hamming", &t->max_hamming, kHamming);
+  m->Number("match_ratio", &t->match_ratio, kRatio);
+  m->Integer("min_inliers", &t->min_inliers, kCount3);
+  m->Integer("min_inliers_motion", &t->min_inliers_motion, kCount3);
+  m->Integer("local_keyframes", &t->local_keyframes, kCount1);
+  m->Number("huber_px", &t->huber_px, NumberRange::Positive());
+  m->Integer("pose_iterations", &t->pose_iterations, NumberRange::Closed(1, 100));
+  m->Integer("keyframe_max_frames", &t->keyframe_max_frames, kCount1);
+  m->Integer("keyframe_min_frames", &t->keyframe_min_frames, kCount0);
+  m->Number("keyframe_ratio", &t->keyframe_ratio, kRatio);
+  m->Integer("close_points_min", &t->close_points_min, kCount0);
+  m->Integer("relocalise_min_inliers", &t->relocalise_min_inliers, NumberRange::Closed(4, kMaxCount));
+  m->RejectUnknownKeys();
+  if (t->keyframe_min_frames > t->keyframe_max_frames) {
+    FailAtEither(m, "keyframe_min_frames", m, "keyframe_max_frames",
+                 "key '" + m->KeyPath("keyframe_min_frames") + "' (" + std::to_string(t->keyframe_min_frames) +
+                     ") must not exceed '" + m->KeyPath("keyframe_max_frames") + "' (" +
+                     std::to_string(t->keyframe_max_frames) + ")");
+  }
+}
+
+void ReadMapping(YamlMapReader* m, MappingSettings* p) {
+  m->Choice("mode", &p->mode, kMappingModes);
+  m->Integer("ba_window", &p->ba_window, kCount1);
+  m->Integer("ba_iterations", &p->ba_iterations, NumberRange::Closed(1, 1000));
+  m->Number("ba_huber_px", &p->ba_huber_px, NumberRange::Positive());
+  m->Integer("covisibility_min", &p->covisibility_min, kCount1);
+  m->Integer("triangulation_neighbours", &p->triangulation_neighbours, kCount1);
+  m->Number("min_parallax_deg", &p->min_parallax_deg, NumberRange::ClosedOpen(0, 90));
+  // 0 turns culling off, hence a closed interval.
+  m->Number("culling_found_ratio", &p->culling_found_ratio, NumberRange::Closed(0, 1));
+  m->Number("redundant_keyframe_ratio", &p->redundant_keyframe_ratio, kRatio);
+  m->RejectUnknownKeys();
+}
+
+// The shortest of %.15g / %.17g that reads back as the same double.
+std::string Num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof(buf), "%.15g", v);
+  if (std::strtod(buf, nullptr) != v) std::snprintf(buf, sizeof(buf), "%.17g", v);
+  return buf;
+}
+
+void Number(YAML::Emitter& out, const std::string& key, double value) {
+  out << YAML::Key << key << YAML::Value << Num(value);
+}
+
+void Int(YAML::Emitter& out, const std::string& key, int value) {
+  out << YAML::Key << key << YAML::Value << std::to_string(value);
+}
+
+// A value from a fixed set of plain words (stereo, sync, ...): no quotes needed.
+void Word(YAML::Emitter& out, const std::string& key, const std::string& value) {
+  out << YAML::Key << key << YAML::Value << value;
+}
+
+}  // namespace
+
+SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides) {
+  YamlSource src(path);
+  YAML::Node root = LoadYamlFile(path);
+  for (const std::string& o : overrides) ApplyYamlOverride(&root, o, &src);
+
+  SlamSettings s;
+  s.source_file = fs::absolute(path).lexically_normal().string();
+
+  YamlMapReader top(src, root, "");
+  top.Choice("input", &s.input, kInputs);
+  top.Number("rgbd_max_depth_m", &s.rgbd_max_depth_m, NumberRange::Positive());
+  top.Number("rgbd_virtual_baseline_m", &s.rgbd_virtual_baseline_m, NumberRange::OpenClosed(0, 10));
+  YamlMapReader orb = top.Map("orb");
+  ReadOrb(&orb, &s.orb);
+  YamlMapReader stereo = top.Map("stereo");
+  ReadStereo(&stereo, &s.stereo);
+  YamlMapReader tracking = top.Map("tracking");
+  ReadTracking(&tracking, &s.tracking);
+  YamlMapReader mapping = top.Map("mapping");
+  ReadMapping(&mapping, &s.mapping);
+  top.RejectUnknownKeys();
+
+  // The matcher searches right keypoints at the extractor's pyramid levels: the scales must agree.
+  if (s.stereo.scale_factor != s.orb.scale_factor) {
+    FailAtEither(&stereo, "scale_factor", &orb, "scale_factor",
+                 "key 'stereo.scale_factor' (" + Num(s.stereo.scale_factor) + ") must equal 'orb.scale_factor' (" +
+                     Num(s.orb.scale_factor) + "): the stereo matcher works on the extractor's pyramid; set both");
+  }
+  return s;
+}
+
+std::string DefaultSlamSettingsPath() { return VIQU_SOURCE_DIR "/slam/config/default.yaml"; }
+
+std::string SlamSettingsToYaml(const SlamSettings& s) {
+  YAML::Emitter out;
+  std::string header = "Resolved SLAM settings (defaults filled in, --set applied)";
+  if (!s.source_file.empty()) header += "; read from " + s.source_file;
+  out << YAML::Comment(header) << YAML::Newline;
+  out << YAML::BeginMap;
+  Word(out, "input", s.input);
+  Number(out, "rgbd_max_depth_m", s.rgbd_max_depth_m);
+  Number(out, "rgbd_virtual_baseline_m", s.rgbd_virtual_baseline_m);
+
+  out << YAML::Key << "orb" << YAML::Value << YAML::BeginMap;
+  Int(out, "num_features", s.orb.num_features);
+  Number(out, "scale_factor", s.orb.scale_factor);
+  Int(out, "num_levels", s.orb.num_levels);
+  Int(out, "fast_threshold", s.orb.fast_threshold);
+  Int(out, "fast_threshold_min", s.orb.fast_threshold_min);
+  Int(out, "cell_px", s.orb.cell_px);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "stereo" << YAML::Value << YAML::BeginMap;
+  Int(out, "max_hamming", s.stereo.max_hamming);
+  Number(out, "row_band_px", s.stereo.row_band_px);
+  Int(out, "sad_half_window", s.stereo.sad_half_window);
+  Int(out, "sad_search_px", s.stereo.sad_search_px);
+  Number(out, "max_ratio", s.stereo.max_ratio);
+  Number(out, "min_depth_m", s.stereo.min_depth_m);
+  Number(out, "max_depth_baselines", s.stereo.max_depth_baselines);
+  Number(out, "scale_factor", s.stereo.scale_factor);
+  Number(out, "sad_outlier_factor", s.stereo.sad_outlier_factor);
+  Number(out, "sad_uniqueness", s.stereo.sad_uniqueness);
+  out << YAML::EndMap;
+
+  const TrackingSettings& t = s.tracking;
+  out << YAML::Key << "tracking" << YAML::Value << YAML::BeginMap;
+  Number(out, "motion_search_px", t.motion_search_px);
+  Number(out, "local_map_search_px", t.local_map_search_px);
+  Int(out, "max_hamming", t.max_hamming);
+  Number(out, "match_ratio", t.match_ratio);
+  Int(out, "min_inliers", t.min_inliers);
+  Int(out, "min_inliers_motion", t.min_inliers_motion);
+  Int(out, "local_keyframes", t.local_keyframes);
+  Number(out, "huber_px", t.huber_px);
+  Int(out, "pose_iterations", t.pose_iterations);
+  Int(out, "keyframe_max_frames", t.keyframe_max_frames);
+  Int(out, "keyframe_min_frames", t.keyframe_min_frames);
+  Number(out, "keyframe_ratio", t.keyframe_ratio);
+  Int(out, "close_points_min", t.close_points_min);
+  Int(out, "relocalise_min_inliers", t.relocalise_min_inliers);
+  out << YAML::EndMap;
+
+  const MappingSettings& m = s.mapping;
+  out << YAML::Key << "mapping" << YAML::Value << YAML::BeginMap;
+  Word(out, "mode", m.mode);
+  Int(out, "ba_window", m.ba_window);
+  Int(out, "ba_iterations", m.ba_iterations);
+  Number(out, "ba_huber_px", m.ba_huber_px);
+  Int(out, "covisibility_min", m.covisibility_min);
+  Int(out, "triangulation_neighbours", m.triangulation_neighbours);
+  Number(out, "min_parallax_deg", m.min_parallax_deg);
+  Number(out, "culling_found_ratio", m.culling_found_ratio);
+  Number(out, "redundant_keyframe_ratio", m.redundant_keyframe_ratio);
+  out << YAML::EndMap;
+
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace viqu::slam

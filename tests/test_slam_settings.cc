@@ -1,0 +1,313 @@
+// Strict SLAM settings loading: default.yaml equals the struct defaults, round trip through
+// SlamSettingsToYaml, --set overrides, and FILE:LINE:COL errors.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "common/errors.h"
+#include "slam/settings/slam_settings.h"
+
+namespace viqu::slam {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SlamSettingsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string tmpl = (fs::temp_directory_path() / "viqu_slam_settings_XXXXXX").string();
+    ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
+    dir_ = tmpl;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+
+  // The InputError message of loading `yaml` (written as slam.yaml) with `overrides`, or a
+  // failure marker when no InputError is thrown.
+  std::string ErrorOf(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
+    const std::string path = Write("slam.yaml", yaml);
+    try {
+      LoadSlamSettings(path, overrides);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "<no InputError>";
+  }
+
+  std::string Path() const { return (dir_ / "slam.yaml").string(); }
+
+  fs::path dir_;
+};
+
+// Every field (source_file excepted), compared exactly.
+void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
+  EXPECT_EQ(a.input, b.input);
+  EXPECT_EQ(a.rgbd_max_depth_m, b.rgbd_max_depth_m);
+  EXPECT_EQ(a.rgbd_virtual_baseline_m, b.rgbd_virtual_baseline_m);
+
+  EXPECT_EQ(a.orb.num_features, b.orb.num_features);
+  EXPECT_EQ(a.orb.scale_factor, b.orb.scale_factor);
+  EXPECT_EQ(a.orb.num_levels, b.orb.num_levels);
+  EXPECT_EQ(a.orb.fast_threshold, b.orb.fast_threshold);
+  EXPECT_EQ(a.orb.fast_threshold_min, b.orb.fast_threshold_min);
+  EXPECT_EQ(a.orb.cell_px, b.orb.cell_px);
+
+  EXPECT_EQ(a.stereo.max_hamming, b.stereo.max_hamming);
+  EXPECT_EQ(a.stereo.row_band_px, b.stereo.row_band_px);
+  EXPECT_EQ(a.stereo.sad_half_window, b.stereo.sad_half_window);
+  EXPECT_EQ(a.stereo.sad_search_px, b.stereo.sad_search_px);
+  EXPECT_EQ(a.stereo.max_ratio, b.stereo.max_ratio);
+  EXPECT_EQ(a.stereo.min_depth_m, b.stereo.min_depth_m);
+  EXPECT_EQ(a.stereo.max_depth_baselines, b.stereo.max_depth_baselines);
+  EXPECT_EQ(a.stereo.scale_factor, b.stereo.scale_factor);
+  EXPECT_EQ(a.stereo.sad_outlier_factor, b.stereo.sad_outlier_factor);
+  EXPECT_EQ(a.stereo.sad_uniqueness, b.stereo.sad_uniqueness);
+
+  const TrackingSettings& ta = a.tracking;
+  const TrackingSettings& tb = b.tracking;
+  EXPECT_EQ(ta.motion_search_px, tb.motion_search_px);
+  EXPECT_EQ(ta.local_map_search_px, tb.local_map_search_px);
+  EXPECT_EQ(ta.max_hamming, tb.max_hamming);
+  EXPECT_EQ(ta.match_ratio, tb.match_ratio);
+  EXPECT_EQ(ta.min_inliers, tb.min_inliers);
+  EXPECT_EQ(ta.min_inliers_motion, tb.min_inliers_motion);
+  EXPECT_EQ(ta.local_keyframes, tb.local_keyframes);
+  EXPECT_EQ(ta.huber_px, tb.huber_px);
+  EXPECT_EQ(ta.pose_iterations, tb.pose_iterations);
+  EXPECT_EQ(ta.keyframe_max_frames, tb.keyframe_max_frames);
+  EXPECT_EQ(ta.keyframe_min_frames, tb.keyframe_min_frames);
+  EXPECT_EQ(ta.keyframe_ratio, tb.keyframe_ratio);
+  EXPECT_EQ(ta.close_points_min, tb.close_points_min);
+  EXPECT_EQ(ta.relocalise_min_inliers, tb.relocalise_min_inliers);
+
+  const MappingSettings& ma = a.mapping;
+  const MappingSettings& mb = b.mapping;
+  EXPECT_EQ(ma.mode, mb.mode);
+  EXPECT_EQ(ma.ba_window, mb.ba_window);
+  EXPECT_EQ(ma.ba_iterations, mb.ba_iterations);
+  EXPECT_EQ(ma.ba_huber_px, mb.ba_huber_px);
+  EXPECT_EQ(ma.covisibility_min, mb.covisibility_min);
+  EXPECT_EQ(ma.triangulation_neighbours, mb.triangulation_neighbours);
+  EXPECT_EQ(ma.min_parallax_deg, mb.min_parallax_deg);
+  EXPECT_EQ(ma.culling_found_ratio, mb.culling_found_ratio);
+  EXPECT_EQ(ma.redundant_keyframe_ratio, mb.redundant_keyframe_ratio);
+}
+
+// Number of "key: value" lines (not counting section headers) in YAML text.
+int CountLeafKeys(const std::string& yaml) {
+  int n = 0;
+  size_t start = 0;
+  while (start < yaml.size()) {
+    size_t end = yaml.find('\n', start);
+    if (end == std::string::npos) end = yaml.size();
+    std::string line = yaml.substr(start, end - start);
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos) line = line.substr(0, hash);
+    const size_t colon = line.find(':');
+    if (colon != std::string::npos && line.find_first_not_of(" \t", colon + 1) != std::string::npos) ++n;
+    start = end + 1;
+  }
+  return n;
+}
+
+// The number of fields of SlamSettings that are keys (all but source_file).
+constexpr int kLeafKeys = 3 + 6 + 10 + 14 + 9;
+
+TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
+  const std::string path = DefaultSlamSettingsPath();
+  ASSERT_TRUE(fs::is_regular_file(path)) << path;
+  const SlamSettings s = LoadSlamSettings(path);
+  ExpectSameSettings(s, SlamSettings());
+  EXPECT_EQ(s.source_file, fs::path(path).lexically_normal().string());
+  // Every key is written out in the default file.
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(CountLeafKeys(text), kLeafKeys);
+}
+
+TEST_F(SlamSettingsTest, EmptyFileGivesDefaults) {
+  const SlamSettings s = LoadSlamSettings(Write("slam.yaml", ""));
+  ExpectSameSettings(s, SlamSettings());
+  EXPECT_EQ(s.source_file, Path());
+  ExpectSameSettings(LoadSlamSettings(Write("slam.yaml", "tracking: {}\nmapping:\n")), SlamSettings());
+}
+
+TEST_F(SlamSettingsTest, DefaultsRoundTrip) {
+  const std::string yaml = SlamSettingsToYaml(SlamSettings());
+  EXPECT_EQ(CountLeafKeys(yaml), kLeafKeys) << yaml;
+  ExpectSameSettings(LoadSlamSettings(Write("saved.yaml", yaml)), SlamSettings());
+}
+
+TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
+  SlamSettings s;
+  s.input = "rgbd";
+  s.rgbd_max_depth_m = 4.123456789012345;
+  s.rgbd_virtual_baseline_m = 0.1 + 0.2;  // not the shortest decimal of its neighbours
+  s.orb = {2000, 1.3, 6, 25, 5, 40};
+  s.stereo.max_hamming = 60;
+  s.stereo.row_band_px = 0;
+  s.stereo.sad_half_window = 3;
+  s.stereo.sad_search_px = 7;
+  s.stereo.max_ratio = 1;
+  s.stereo.min_depth_m = 0.05;
+  s.stereo.max_depth_baselines = 55.5;
+  s.stereo.scale_factor = 1.3;
+  s.stereo.sad_outlier_factor = 3;
+  s.stereo.sad_uniqueness = 0.5;
+  s.tracking = {12.5, 3.25, 90, 0.8, 25, 15, 8, 1.5, 3, 30, 2, 0.6, 50, 35};
+  s.mapping.mode = "realtime";
+  s.mapping.ba_window = 7;
+  s.mapping.ba_iterations = 20;
+  s.mapping.ba_huber_px = 3;
+  s.mapping.covisibility_min = 10;
+  s.mapping.triangulation_neighbours = 12;
+  s.mapping.min_parallax_deg = 0.5;
+  s.mapping.culling_found_ratio = 0;
+  s.mapping.redundant_keyframe_ratio = 0.95;
+  s.source_file = "/some/where.yaml";
+
+  const std::string yaml = SlamSettingsToYaml(s);
+  const SlamSettings back = LoadSlamSettings(Write("saved.yaml", yaml));
+  ExpectSameSettings(back, s);
+  EXPECT_EQ(back.source_file, (dir_ / "saved.yaml").string());
+  // Saving again gives the same text, apart from the header comment naming the source.
+  SlamSettings again = back;
+  again.source_file = s.source_file;
+  EXPECT_EQ(SlamSettingsToYaml(again), yaml);
+}
+
+TEST_F(SlamSettingsTest, OverrideSetsOneKeyAndKeepsTheRest) {
+  const SlamSettings s = LoadSlamSettings(DefaultSlamSettingsPath(), {"tracking.min_inliers=50"});
+  EXPECT_EQ(s.tracking.min_inliers, 50);
+  SlamSettings expected;
+  expected.tracking.min_inliers = 50;
+  ExpectSameSettings(s, expected);
+}
+
+TEST_F(SlamSettingsTest, OverridesCreateSectionsAndPartialFilesKeepDefaults) {
+  const std::string path = Write("slam.yaml", "orb:\n  num_features: 800\n");
+  const SlamSettings s = LoadSlamSettings(path, {"mapping.mode=realtime", "input=rgbd", "stereo.max_ratio=0.8"});
+  SlamSettings expected;
+  expected.orb.num_features = 800;
+  expected.mapping.mode = "realtime";
+  expected.input = "rgbd";
+  expected.stereo.max_ratio = 0.8;
+  ExpectSameSettings(s, expected);
+}
+
+TEST_F(SlamSettingsTest, UnknownKeyNamesFileLineAndColumn) {
+  const std::string msg = ErrorOf(
+      "input: stereo\n"
+      "tracking:\n"
+      "  min_inliers: 30\n"
+      "  min_inlier: 5\n");
+  EXPECT_EQ(msg.rfind(Path() + ":4:3: unknown key 'tracking.min_inlier' (expected one of: motion_search_px, ", 0),
+            0u)
+      << msg;
+  EXPECT_NE(msg.find("relocalise_min_inliers)"), std::string::npos) << msg;
+}
+
+TEST_F(SlamSettingsTest, UnknownKeysAtTopLevelAndInEverySection) {
+  EXPECT_EQ(ErrorOf("input: stereo\nloop_closing: true\n").rfind(Path() + ":2:1: unknown key 'loop_closing'", 0), 0u);
+  EXPECT_EQ(ErrorOf("orb: {nfeatures: 10}\n").rfind(Path() + ":1:7: unknown key 'orb.nfeatures'", 0), 0u);
+  EXPECT_EQ(ErrorOf("stereo:\n    sad_window: 3\n").rfind(Path() + ":2:5: unknown key 'stereo.sad_window'", 0), 0u);
+  EXPECT_EQ(ErrorOf("mapping:\n  ba_windows: 3\n").rfind(Path() + ":2:3: unknown key 'mapping.ba_windows'", 0), 0u);
+  const std::string set = ErrorOf("", {"tracking.min_inlier=5"});
+  EXPECT_EQ(set.rfind("--set tracking.min_inlier=5: unknown key 'tracking.min_inlier'", 0), 0u) << set;
+}
+
+TEST_F(SlamSettingsTest, WrongType) {
+  EXPECT_EQ(ErrorOf("tracking:\n  min_inliers: many\n"),
+            Path() + ":2:16: key 'tracking.min_inliers' expected an integer in [3, 100000], got 'many'");
+  EXPECT_EQ(ErrorOf("orb: {num_levels: 7.5}\n"),
+            Path() + ":1:19: key 'orb.num_levels' expected an integer in [1, 32], got '7.5'");
+  EXPECT_EQ(ErrorOf("stereo: {min_depth_m: \"0.1\"}\n"),
+            Path() + ":1:23: key 'stereo.min_depth_m' expected a number > 0, got '\"0.1\"' (a quoted string)");
+  EXPECT_EQ(ErrorOf("mapping: [1, 2]\n"), Path() + ":1:10: key 'mapping' expected a map, got a list");
+  EXPECT_EQ(ErrorOf("mapping: {mode: async}\n"),
+            Path() + ":1:17: key 'mapping.mode' expected one of sync, realtime, got 'async'");
+  EXPECT_EQ(ErrorOf("input: mono\n"), Path() + ":1:8: key 'input' expected one of stereo, rgbd, got 'mono'");
+  EXPECT_EQ(ErrorOf("", {"tracking.huber_px=wide"}),
+            "--set tracking.huber_px=wide: key 'tracking.huber_px' expected a number > 0, got 'wide'");
+}
+
+TEST_F(SlamSettingsTest, OutOfRange) {
+  EXPECT_EQ(ErrorOf("tracking:\n  match_ratio: 1.5\n"),
+            Path() + ":2:16: key 'tracking.match_ratio' expected a number in (0, 1], got '1.5'");
+  EXPECT_EQ(ErrorOf("orb:\n  num_features: 0\n"),
+            Path() + ":2:17: key 'orb.num_features' expected an integer in [1, 100000], got '0'");
+  EXPECT_EQ(ErrorOf("orb: {scale_factor: 1, num_levels: 1}\nstereo: {scale_factor: 1}\n"),
+            Path() + ":1:21: key 'orb.scale_factor' expected a number in (1, 4], got '1'");
+  EXPECT_EQ(ErrorOf("rgbd_max_depth_m: -2\n"),
+            Path() + ":1:19: key 'rgbd_max_depth_m' expected a number > 0, got '-2'");
+  EXPECT_EQ(ErrorOf("stereo:\n  max_hamming: 300\n"),
+            Path() + ":2:16: key 'stereo.max_hamming' expected an integer in [1, 256], got '300'");
+  EXPECT_EQ(ErrorOf("mapping:\n  culling_found_ratio: -0.1\n"),
+            Path() + ":2:24: key 'mapping.culling_found_ratio' expected a number in [0, 1], got '-0.1'");
+}
+
+TEST_F(SlamSettingsTest, CrossFieldChecks) {
+  const std::string fast = ErrorOf("orb:\n  fast_threshold: 10\n  fast_threshold_min: 12\n");
+  EXPECT_EQ(fast.rfind(Path() + ":3:23: key 'orb.fast_threshold_min' (12) must not exceed 'orb.fast_threshold' (10)",
+                       0),
+            0u)
+      << fast;
+  // Only the threshold is in the file: the message points at it.
+  const std::string fast2 = ErrorOf("orb:\n  fast_threshold: 5\n");
+  EXPECT_EQ(fast2.rfind(Path() + ":2:19: key 'orb.fast_threshold_min' (7) must not exceed", 0), 0u) << fast2;
+
+  const std::string kf = ErrorOf("tracking: {keyframe_min_frames: 30}\n");
+  EXPECT_EQ(kf.rfind(Path() + ":1:33: key 'tracking.keyframe_min_frames' (30) must not exceed", 0), 0u) << kf;
+
+  // The stereo matcher must work on the extractor's pyramid.
+  const std::string scale = ErrorOf("orb:\n  scale_factor: 1.3\n");
+  EXPECT_EQ(scale.rfind(Path() + ":2:17: key 'stereo.scale_factor' (1.2) must equal 'orb.scale_factor' (1.3)", 0), 0u)
+      << scale;
+  const std::string scale2 = ErrorOf("orb: {scale_factor: 1.3}\nstereo: {scale_factor: 1.25}\n");
+  EXPECT_EQ(scale2.rfind(Path() + ":2:24: key 'stereo.scale_factor' (1.25) must equal 'orb.scale_factor' (1.3)", 0),
+            0u)
+      << scale2;
+  const std::string scale3 = ErrorOf("", {"orb.scale_factor=1.5"});
+  EXPECT_EQ(scale3.rfind("--set orb.scale_factor=1.5: key 'stereo.scale_factor' (1.2) must equal", 0), 0u) << scale3;
+  // Both set alike: fine.
+  const SlamSettings s =
+      LoadSlamSettings(Write("slam.yaml", "orb: {scale_factor: 1.5}\n"), {"stereo.scale_factor=1.5"});
+  EXPECT_EQ(s.orb.scale_factor, 1.5);
+  EXPECT_EQ(s.stereo.scale_factor, 1.5);
+}
+
+TEST_F(SlamSettingsTest, DuplicateKey) {
+  EXPECT_EQ(ErrorOf("tracking:\n  min_inliers: 30\n  min_inliers: 40\n"),
+            Path() + ":3:3: duplicate key 'tracking.min_inliers'");
+}
+
+TEST_F(SlamSettingsTest, MissingFile) {
+  const std::string path = (dir_ / "nope.yaml").string();
+  try {
+    LoadSlamSettings(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": file not found");
+  }
+}
+
+TEST_F(SlamSettingsTest, MalformedYamlNamesLineAndColumn) {
+  const std::string msg = ErrorOf("input: stereo\n  bad: 2\n");
+  EXPECT_EQ(msg.rfind(Path() + ":2:6: YAML syntax error: ", 0), 0u) << msg;
+  const std::string msg2 = ErrorOf("orb: {num_features: 10\ntracking: {}\n");
+  EXPECT_EQ(msg2.rfind(Path() + ":", 0), 0u) << msg2;
+  EXPECT_NE(msg2.find("YAML syntax error"), std::string::npos) << msg2;
+  EXPECT_EQ(ErrorOf("[1, 2]\n"), Path() + ":1:1: the document expected a map, got a list");
+}
+
+}  // namespace
+}  // namespace viqu::slam
