@@ -8,6 +8,7 @@
 #include "apps/eval_command.h"
 #include "apps/run_options.h"
 #include "apps/run_scenario.h"
+#include "apps/slam_command.h"
 #include "apps/usage_error.h"
 #include "common/errors.h"
 #include "scenario/scenario_loader.h"
@@ -37,7 +38,7 @@ int Dispatch(const CliArgs& args) {
       std::fputs(UsageText(args.help_topic).c_str(), stdout);
       return kExitOk;
     case Command::kRun: return Run(args.run);
-    case Command::kSlam: return NotImplemented("slam");
+    case Command::kSlam: return RunSlamCommand(args.slam);
     case Command::kEval: return RunEval(args.eval);
     case Command::kSweep: return NotImplemented("sweep");
     case Command::kView: return NotImplemented("view");

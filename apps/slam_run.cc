@@ -9,7 +9,11 @@ namespace viqu::app {
 
 SlamRun::SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
                  const Eigen::Isometry3d& world_from_first_camera)
-    : system_(settings, world_from_first_camera), writer_(out_dir + "/trajectory_est.txt") {}
+    : system_(settings, world_from_first_camera),
+      writer_(out_dir + "/trajectory_est.txt"),
+      log_(std::make_unique<AtomicOutputFile>(out_dir + "/tracking.csv")) {
+  log_->Write("t_s,status,features,stereo_points,inliers,keyframe,track_ms\n");
+}
 
 slam::TrackResult SlamRun::Track(const StereoFrame& frame) {
   const slam::TrackResult r = system_.Track(frame);
@@ -20,12 +24,17 @@ slam::TrackResult SlamRun::Track(const StereoFrame& frame) {
   writer_.Add(p);
   est_.push_back(p);
   status_.push_back(r.status);
+  char line[160];
+  std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%d,%.2f\n", sim::FormatSeconds(r.t_ns).c_str(),
+                slam::TrackStatusName(r.status), r.features, r.stereo_points, r.inliers, r.keyframe ? 1 : 0, r.track_ms);
+  log_->Write(line);
   return r;
 }
 
 SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, JsonWriter* json) {
   system_.Finish();
   writer_.Close();
+  log_->Commit();
   const slam::SlamStats st = system_.Stats();
   SlamSummary s;
   s.frames = st.frames;

@@ -1,11 +1,13 @@
 #pragma once
 // One SLAM run over a stream of frames, as `viqu run` (live) and `viqu slam` (offline) both do
-// it: the estimate written to trajectory_est.txt as frames come, statuses and timings kept, and
+// it: the estimate written to trajectory_est.txt as frames come, one line per frame in
+// tracking.csv (status, feature and inlier counts, keyframe, time), and
 // at the end the metrics.json keys of the SLAM part (ate.*, rpe.*, tracking.*, timing.track_*).
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "common/atomic_output_file.h"
 #include "common/json_writer.h"
 #include "sim/trajectory_writer.h"
 #include "slam/core/slam_system.h"
@@ -22,7 +24,8 @@ struct SlamSummary {
 
 class SlamRun {
  public:
-  // Writes the estimate to `out_dir`/trajectory_est.txt (atomically, on Finish()).
+  // Writes the estimate to `out_dir`/trajectory_est.txt and the per-frame log to
+// `out_dir`/tracking.csv (both atomically, on Finish()).
   SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
           const Eigen::Isometry3d& world_from_first_camera = Eigen::Isometry3d::Identity());
 
@@ -38,6 +41,7 @@ class SlamRun {
  private:
   slam::SlamSystem system_;
   sim::TrajectoryWriter writer_;
+  std::unique_ptr<AtomicOutputFile> log_;  // tracking.csv
   eval::Trajectory est_;
   std::vector<slam::TrackStatus> status_;
 };

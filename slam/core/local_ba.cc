@@ -61,7 +61,7 @@ LocalBaResult LocalBundleAdjustment(const StereoCamera& cam, const LocalBaOption
       }
     }
     std::sort(points.begin(), points.end(), [](const MapPoint* a, const MapPoint* b) { return a->id < b->id; });
-    std::map<KeyFrame*, int> outside;  // keyframe -> observations of local points
+    KeyFrameMap<int> outside;  // keyframe -> observations of local points
     for (MapPoint* p : points) {
       for (const auto& [k, idx] : p->observations) {
         if (!k->bad && !local_set.count(k)) ++outside[k];

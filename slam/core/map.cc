@@ -84,7 +84,7 @@ std::vector<KeyFrame*> KeyFrame::BestCovisible(size_t n) const {
 }
 
 void KeyFrame::UpdateConnections(int min_shared) {
-  std::map<KeyFrame*, int> counts;
+  KeyFrameMap<int> counts;
   for (MapPoint* p : points) {
     if (!p || p->bad) continue;
     for (const auto& [kf, idx] : p->observations) {

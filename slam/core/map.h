@@ -18,6 +18,14 @@ namespace viqu::slam {
 
 class KeyFrame;
 
+// Orders keyframes by id, so that iteration over keyframe-keyed containers (and with it every
+// result) does not depend on where the keyframes happen to be allocated.
+struct KeyFrameIdLess {
+  bool operator()(const KeyFrame* a, const KeyFrame* b) const;
+};
+template <class V>
+using KeyFrameMap = std::map<KeyFrame*, V, KeyFrameIdLess>;
+
 class MapPoint {
  public:
   MapPoint(int64_t id, const Eigen::Vector3d& p_w, KeyFrame* ref) : id(id), p_w(p_w), reference(ref) {}
@@ -25,7 +33,7 @@ class MapPoint {
   int64_t id;
   Eigen::Vector3d p_w;                     // position in world (m)
   KeyFrame* reference;                     // keyframe that created it
-  std::map<KeyFrame*, int> observations;   // keyframe -> feature index (ordered by keyframe id)
+  KeyFrameMap<int> observations;           // keyframe -> feature index (ordered by keyframe id)
   cv::Mat descriptor;                      // the observation descriptor closest to all others
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // mean viewing direction (unit)
   double min_distance = 0, max_distance = 0;         // scale-invariance range (m)
@@ -50,7 +58,7 @@ class KeyFrame {
   std::shared_ptr<const FrameFeatures> features;
   std::vector<MapPoint*> points;           // map point per feature (nullptr: none)
   Eigen::Isometry3d T_c_w;                 // world -> camera
-  std::map<KeyFrame*, int> covisible;      // keyframe -> shared map points (>= threshold, or the best)
+  KeyFrameMap<int> covisible;              // keyframe -> shared map points (>= threshold, or the best)
   bool bad = false;
   bool fixed = false;                      // the first keyframe anchors the map
 
@@ -61,6 +69,8 @@ class KeyFrame {
   void UpdateConnections(int min_shared);
   int TrackedPoints(int min_observations) const;
 };
+
+inline bool KeyFrameIdLess::operator()(const KeyFrame* a, const KeyFrame* b) const { return a->id < b->id; }
 
 class Map {
  public:

@@ -40,7 +40,7 @@ cv::Mat ToGrey(const cv::Mat& rgb) {
 }  // namespace
 
 Tracker::Tracker(const SlamSettings& settings, Map* map)
-    : settings_(settings), map_(map), extractor_(settings.orb), stereo_(settings.stereo) {
+    : settings_(settings), map_(map), extractor_(settings.orb), right_extractor_(settings.orb), stereo_(settings.stereo) {
   pose_opt_.rounds = settings.tracking.pose_iterations;
   pose_opt_.huber_px = settings.tracking.huber_px;
 }
@@ -86,7 +86,7 @@ std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame
     std::vector<cv::KeyPoint> rk;
     cv::Mat rd;
     // The right image's features on a second thread: the two extractions are independent.
-    auto right_job = std::async(std::launch::async, [&] { extractor_.Extract(right, cv::Mat(), &rk, &rd); });
+    auto right_job = std::async(std::launch::async, [&] { right_extractor_.Extract(right, cv::Mat(), &rk, &rd); });
     extractor_.Extract(left, cv::Mat(), &f->keypoints, &f->descriptors);
     right_job.get();
     const auto sm = stereo_.Match(left, right, f->keypoints, f->descriptors, rk, rd, cam_.fx, cam_.bf / cam_.fx);
@@ -307,7 +307,7 @@ bool Tracker::TrackReferenceKeyFrame() {
 
 int Tracker::TrackLocalMap() {
   // Local keyframes: those that see the frame's points, then their best neighbours.
-  std::map<KeyFrame*, int> counter;
+  KeyFrameMap<int> counter;
   for (size_t i = 0; i < cur_.size(); ++i) {
     MapPoint* p = cur_.points[i];
     if (!p || p->bad || p->id < 0) continue;

@@ -57,6 +57,7 @@ class Tracker {
   SlamSettings settings_;
   Map* map_;
   OrbExtractor extractor_;
+  OrbExtractor right_extractor_;   // its own instance: the right image is extracted on another thread
   StereoMatcher stereo_;
   StereoCamera cam_;
   bool have_camera_ = false;

@@ -1,0 +1,122 @@
+#include "apps/slam_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+
+#include "apps/slam_run.h"
+#include "common/atomic_file.h"
+#include "common/errors.h"
+#include "common/json_writer.h"
+#include "sim/trajectory_writer.h"
+#include "slam/io/open_dataset.h"
+#include "slam/settings/slam_settings.h"
+
+namespace viqu::app {
+namespace {
+
+std::string DefaultOutDir(const std::string& dataset_dir) {
+  std::filesystem::path p(dataset_dir);
+  if (p.filename().empty()) p = p.parent_path();
+  return "runs/slam-" + p.filename().string();
+}
+
+Eigen::Isometry3d ToIsometry(const StampedPose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = p.q_w_x.normalized().toRotationMatrix();
+  T.translation() = p.p_w_x;
+  return T;
+}
+
+// The ground-truth pose nearest to t_ns within 0.02 s (as the evaluation associates), if any.
+const StampedPose* NearestPose(const eval::Trajectory& gt, int64_t t_ns) {
+  const StampedPose* best = nullptr;
+  int64_t best_d = 20'000'000;
+  for (const StampedPose& p : gt) {
+    const int64_t d = std::llabs(p.t_ns - t_ns);
+    if (d < best_d) {
+      best_d = d;
+      best = &p;
+    }
+  }
+  return best;
+}
+
+double PathLength(const eval::Trajectory& gt) {
+  double len = 0;
+  for (size_t i = 1; i < gt.size(); ++i) len += (gt[i].p_w_x - gt[i - 1].p_w_x).norm();
+  return len;
+}
+
+}  // namespace
+
+int RunSlamCommand(const SlamArgs& args) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const io::DatasetFormat format = io::ParseDatasetFormat(args.format);
+  std::unique_ptr<io::DatasetReader> reader = io::OpenDataset(args.dataset_dir, format);
+  slam::SlamSettings settings =
+      slam::LoadSlamSettings(args.config.empty() ? slam::DefaultSlamSettingsPath() : args.config);
+  if (format == io::DatasetFormat::kTum && settings.input != "rgbd") {
+    std::fprintf(stderr, "viqu: note: TUM RGB-D has no right image; tracking in rgbd mode\n");
+    settings.input = "rgbd";
+  }
+  if (settings.input == "rgbd" && !reader->HasDepth()) {
+    throw InputError(args.dataset_dir + ": settings ask for rgbd input but the dataset has no depth images");
+  }
+  if (settings.input == "stereo" && reader->baseline_m() <= 0) {
+    throw InputError(args.dataset_dir + ": settings ask for stereo input but the dataset has no right camera");
+  }
+
+  const std::string out = args.out_dir.empty() ? DefaultOutDir(args.dataset_dir) : args.out_dir;
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw RunError("cannot create output folder " + out + ": " + ec.message());
+  WriteFileAtomic(out + "/slam_settings.yaml", slam::SlamSettingsToYaml(settings));
+
+  const eval::Trajectory gt = reader->ground_truth().value_or(eval::Trajectory{});
+  std::unique_ptr<SlamRun> run;
+  StereoFrame frame;
+  int64_t first_t = 0, last_t = 0;
+  int frames = 0;
+  while (reader->Next(&frame)) {
+    if (!run) {
+      // The map is anchored at the ground-truth pose of the first frame when there is one, as
+      // the live run anchors it, so that both give the same trajectory.
+      const StampedPose* p0 = NearestPose(gt, frame.t_ns);
+      run = std::make_unique<SlamRun>(settings, out, p0 ? ToIsometry(*p0) : Eigen::Isometry3d::Identity());
+      first_t = frame.t_ns;
+    }
+    const slam::TrackResult r = run->Track(frame);
+    last_t = frame.t_ns;
+    ++frames;
+    if (r.status == slam::TrackStatus::kLost && frames > 1) {
+      std::fprintf(stderr, "viqu: frame %d (t=%s s): tracking lost\n", frames, sim::FormatSeconds(r.t_ns).c_str());
+    }
+  }
+  if (!run) throw InputError(args.dataset_dir + ": the dataset has no readable frames");
+
+  JsonWriter json;
+  json.Set("dataset", args.dataset_dir);
+  json.Set("format", io::DatasetFormatName(format));
+  json.Set("sim_time_s", (last_t - first_t) * 1e-9);
+  const double path = PathLength(gt);
+  if (!gt.empty()) {
+    json.Set("path_length_m", path);
+    sim::TrajectoryWriter gt_out(out + "/trajectory_gt.txt");
+    for (const StampedPose& p : gt) gt_out.Add(p);
+    gt_out.Close();
+  }
+  const SlamSummary summary = run->Finish(gt, path, &json);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  json.Set("timing.wall_time_s", wall);
+  WriteFileAtomic(out + "/metrics.json", json.ToString());
+  std::printf("viqu slam %s (%s): %d frames in %.1f s\n", args.dataset_dir.c_str(), io::DatasetFormatName(format),
+              frames, wall);
+  std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
+  std::printf("outputs: %s/{trajectory_est.txt,%smetrics.json,slam_settings.yaml}\n", out.c_str(),
+              gt.empty() ? "" : "trajectory_gt.txt,");
+  return 0;
+}
+
+}  // namespace viqu::app
