@@ -10,16 +10,21 @@ namespace viqu::app {
 namespace {
 
 const char* const kRunUsage =
-    "viqu run SCENARIO.yaml [--out DIR] [--set key.path=value ...] [--no-slam] [--record] [--video]\n"
+    "viqu run SCENARIO.yaml [--out DIR] [--set key.path=value ...] [--no-slam] [--record] [--record-tum] [--video]\n"
     "    simulate the scenario, run SLAM live and write the run folder (default runs/NAME)\n"
     "    --out DIR        run folder\n"
     "    --set K=V        override a scenario key (repeatable), e.g. --set sensors.camera.rate_hz=10\n"
     "    --no-slam        simulate and record ground truth only\n"
     "    --record         also write an EuRoC-layout dataset under DIR/dataset\n"
+    "    --record-tum     also write a TUM RGB-D dataset of the left camera under DIR/dataset_tum\n"
     "    --video          also write DIR/video.mp4\n";
 const char* const kSlamUsage =
     "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR]\n"
-    "    replay a recorded run folder or a public dataset through SLAM\n";
+    "    replay a recorded run folder or a public dataset through SLAM\n"
+    "    --format F       viqu (a run folder written with --record; default), euroc (EuRoC MAV,\n"
+    "                     rectified on reading), tum (TUM RGB-D; tracks in rgbd mode)\n"
+    "    --config FILE    SLAM settings (default slam/config/default.yaml)\n"
+    "    --out DIR        output folder (default runs/slam-<dataset folder name>)\n";
 const char* const kEvalUsage =
     "viqu eval EST.txt GT.txt [--json] [--sim3] [--delta N | --delta-m D]\n"
     "    ATE/RPE of two TUM-format trajectories (SE(3) alignment unless --sim3;\n"
@@ -114,6 +119,9 @@ RunArgs ParseRun(ArgCursor* c) {
     } else if (arg == "--record") {
       c->NoValue(arg);
       a.options.record = true;
+    } else if (arg == "--record-tum") {
+      c->NoValue(arg);
+      a.options.record_tum = true;
     } else if (arg == "--video") {
       c->NoValue(arg);
       a.options.video = true;

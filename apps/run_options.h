@@ -8,6 +8,7 @@ struct RunOptions {
   std::string out_dir;  // run folder (created if missing); the CLI fills in runs/<scenario name>
   bool slam = true;     // run the SLAM estimator live (--no-slam turns it off)
   bool record = false;  // write the EuRoC-layout dataset under out_dir/dataset (--record)
+  bool record_tum = false;  // write a TUM RGB-D dataset under out_dir/dataset_tum (--record-tum)
   bool video = false;   // write out_dir/video.mp4 (--video)
 };
 

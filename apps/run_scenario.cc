@@ -25,6 +25,8 @@
 #include "sim/segmentation_model.h"
 #include "sim/stereo_renderer.h"
 #include "sim/trajectory_writer.h"
+#include "sim/depth_quantisation.h"
+#include "sim/tum_recorder.h"
 #include "slam/settings/slam_settings.h"
 
 namespace viqu::app {
@@ -147,6 +149,11 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   if (opt.record) {
     recorder = std::make_unique<sim::EurocRecorder>(out + "/dataset", MakeEurocRig(s, world, renderer.intrinsics()));
   }
+  std::unique_ptr<sim::TumRecorder> tum_recorder;
+  if (opt.record_tum) {
+    if (!ropt.depth) throw InputError(s.source_file + ": --record-tum needs depth (sensors.camera.depth: true)");
+    tum_recorder = std::make_unique<sim::TumRecorder>(out + "/dataset_tum", renderer.intrinsics());
+  }
   std::unique_ptr<VideoOutput> video;
   if (opt.video) {
     video = std::make_unique<VideoOutput>(out + "/video.mp4", s.sensors.camera.rate_hz, ropt.width, ropt.height);
@@ -176,6 +183,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       sim::AddPixelNoise(&frame.left_rgb, s.sensors.camera.noise_std, &sensors.camera_rng);
       sim::AddPixelNoise(&frame.right_rgb, s.sensors.camera.noise_std, &sensors.camera_rng);
       if (!frame.left_instance_id.empty()) sensors.segmentation.Apply(&frame);
+      // Depth as a depth camera delivers it: quantised to TUM's 1/5000 m, so that a recorded
+      // TUM dataset replays exactly as the live run saw it.
+      if (!frame.left_depth_m.empty()) sim::QuantiseDepth(&frame.left_depth_m, sim::TumRecorder::kDepthScale);
       const GroundTruthState gt = world.GroundTruth();
       gt_out.Add(gt.T_w_cam);
       gt_cam.push_back(gt.T_w_cam);
@@ -191,6 +201,10 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
         recorder->AddFrame(frame);
         recorder->AddGroundTruth(gt);
       }
+      if (tum_recorder) {
+        tum_recorder->AddFrame(frame);
+        tum_recorder->AddGroundTruth(gt);
+      }
       if (video) video->Add(frame.left_rgb);
     }
     if (world.TrunkTiltRad() > kFallTiltRad || world.TrunkTouchesGround()) metrics.fell = true;
@@ -202,6 +216,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
 
   gt_out.Close();
   if (recorder) recorder->Finish();
+  if (tum_recorder) tum_recorder->Finish();
   if (video) video->Finish();
   metrics.sim_time_s = world.data()->time;
   metrics.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -217,7 +232,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
               metrics.path_length_m, metrics.frames, Median(metrics.render_ms), metrics.fell ? ", ROBOT FELL" : "");
   if (slam) std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
   std::printf("outputs: %s/{scenario.yaml,trajectory_gt.txt,metrics.json%s%s%s}\n", out.c_str(),
-              slam ? ",trajectory_est.txt,slam_settings.yaml" : "", recorder ? ",dataset/" : "", video ? ",video.mp4" : "");
+              slam ? ",trajectory_est.txt,tracking.csv,slam_settings.yaml" : "",
+              recorder ? (tum_recorder ? ",dataset/,dataset_tum/" : ",dataset/") : (tum_recorder ? ",dataset_tum/" : ""),
+              video ? ",video.mp4" : "");
   return metrics.fell && !s.robot.allow_fall ? 1 : 0;
 }
 

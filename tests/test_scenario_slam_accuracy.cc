@@ -1,0 +1,54 @@
+// Accuracy targets of the SLAM core (issue 3) against ground truth: the full static_room and
+// long_loop scenarios with live stereo SLAM (sync mapping, deterministic). ATE RMSE is at most
+// 0.3% (static_room) and 0.6% (long_loop) of the path, and no frame is lost in these static scenes.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "apps/run_scenario.h"
+#include "scenario/scenario_loader.h"
+
+namespace viqu {
+namespace {
+
+namespace fs = std::filesystem;
+
+YAML::Node RunAndReadMetrics(const std::string& scenario_file, const std::string& tag) {
+  const Scenario s = LoadScenario(std::string(VIQU_SOURCE_DIR) + "/scenarios/" + scenario_file, {});
+  const fs::path dir = fs::temp_directory_path() / ("viqu_slam_accuracy_" + tag);
+  fs::remove_all(dir);
+  app::RunOptions opt;
+  opt.out_dir = dir.string();
+  EXPECT_EQ(app::RunScenario(s, opt), 0);
+  EXPECT_TRUE(fs::exists(dir / "trajectory_est.txt"));
+  // metrics.json is JSON, which YAML reads.
+  return YAML::LoadFile((dir / "metrics.json").string());
+}
+
+void ExpectAccuracy(const YAML::Node& m, double max_pct_path) {
+  const double pct = m["ate"]["rmse_pct_path"].as<double>();
+  const int frames = m["tracking"]["frames"].as<int>();
+  const int lost = m["tracking"]["lost_frames"].as<int>();
+  std::printf("ATE %.4f m RMSE = %.3f%% of %.2f m path; %d lost of %d frames; %d keyframes\n",
+              m["ate"]["rmse_m"].as<double>(), pct, m["path_length_m"].as<double>(), lost, frames,
+              m["tracking"]["keyframes"].as<int>());
+  EXPECT_LE(pct, max_pct_path);
+  EXPECT_EQ(lost, 0);
+  EXPECT_EQ(frames, m["camera"]["frames"].as<int>());            // a pose for every frame
+  EXPECT_EQ(m["ate"]["pairs"].as<int>(), frames);                // and every pose evaluated
+}
+
+TEST(SlamAccuracy, StaticRoomWithinPointThreePercentOfPath) {
+  ExpectAccuracy(RunAndReadMetrics("static_room.yaml", "static_room"), 0.3);
+}
+
+TEST(SlamAccuracy, LongLoopWithinPointSixPercentOfPath) {
+  ExpectAccuracy(RunAndReadMetrics("long_loop.yaml", "long_loop"), 0.6);
+}
+
+}  // namespace
+}  // namespace viqu
