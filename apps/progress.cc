@@ -34,7 +34,11 @@ void ProgressLine::UpdateAt(double sim_s, double wall_s) {
 
 void ProgressLine::Draw(double sim_s, double wall_s) {
   const double rtf = wall_s > 0 ? sim_s / wall_s : 0.0;
-  std::fprintf(out_, "\r sim %.1f/%.1f s  RTF %.2fx %-12s", sim_s, total_sim_s_, rtf, note_);
+  if (note_[0] == '\0') {
+    std::fprintf(out_, "\r sim %.1f/%.1f s  RTF %.2fx ", sim_s, total_sim_s_, rtf);
+  } else {
+    std::fprintf(out_, "\r sim %.1f/%.1f s  RTF %.2fx  %-12s", sim_s, total_sim_s_, rtf, note_);  // padded: overwrite a longer note
+  }
   std::fflush(out_);
   last_draw_wall_s_ = wall_s;
 }
