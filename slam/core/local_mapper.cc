@@ -165,7 +165,7 @@ void LocalMapper::CullRecentPoints(KeyFrame* kf) {
     } else if (p->FoundRatio() < settings_.mapping.culling_found_ratio) {
       Map::ErasePoint(p);
       it = recent_.erase(it);
-    } else if (age >= 2 && p->observations.size() <= 2) {
+    } else if (age >= 2 && p->ObservationWeight() <= 2) {
       Map::ErasePoint(p);
       it = recent_.erase(it);
     } else if (age >= 3) {
@@ -272,7 +272,7 @@ void LocalMapper::CullKeyFrames(KeyFrame* kf) {
       MapPoint* p = n->points[i];
       if (!p || p->bad) continue;
       ++good;
-      if (p->observations.size() <= 3) continue;
+      if (p->ObservationWeight() <= 3) continue;
       const int level = n->features->keypoints[i].octave;
       int others = 0;
       for (const auto& [o, idx] : p->observations) {

@@ -63,6 +63,12 @@ int MapPoint::PredictLevel(double dist, const FrameFeatures& f) const {
   return std::clamp(level, 0, static_cast<int>(f.level_scale.size()) - 1);
 }
 
+int MapPoint::ObservationWeight() const {
+  int w = 0;
+  for (const auto& [kf, idx] : observations) w += kf->features->u_right[idx] >= 0 ? 2 : 1;
+  return w;
+}
+
 KeyFrame::KeyFrame(int64_t id, const Frame& frame)
     : id(id), t_ns(frame.t_ns), features(frame.features), points(frame.points), T_c_w(frame.T_c_w) {
   for (size_t i = 0; i < points.size(); ++i) {
@@ -109,7 +115,7 @@ void KeyFrame::UpdateConnections(int min_shared) {
 int KeyFrame::TrackedPoints(int min_observations) const {
   int n = 0;
   for (MapPoint* p : points) {
-    if (p && !p->bad && static_cast<int>(p->observations.size()) >= min_observations) ++n;
+    if (p && !p->bad && p->ObservationWeight() >= min_observations) ++n;
   }
   return n;
 }

@@ -46,6 +46,9 @@ class MapPoint {
   void UpdateFromObservations(const StereoCamera& cam);
   // Pyramid level expected at distance `dist`.
   int PredictLevel(double dist, const FrameFeatures& f) const;
+  // Observations counted as ORB-SLAM counts them: a stereo observation (with a right-image
+  // match) counts twice, since it fixes the point on its own.
+  int ObservationWeight() const;
   double FoundRatio() const { return static_cast<double>(found) / visible; }
 };
 

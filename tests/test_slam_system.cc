@@ -1,0 +1,144 @@
+// The SLAM system on a synthetic stereo sequence, with no simulator: a textured wall, floor and
+// nearer panel seen by a camera pair moving on a known path, images made by warping the textures with
+// the exact plane homographies. The tracked poses must match the known path, and bad frames must be refused.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "common/errors.h"
+#include "slam/core/slam_system.h"
+
+namespace viqu {
+namespace {
+
+constexpr int kW = 640, kH = 480;
+constexpr double kF = 400, kBaseline = 0.08;
+constexpr double kTexScale = 0.002;  // texture pixel size on the wall (m)
+constexpr int kFrames = 60;
+
+cv::Mat Texture(int rows, int cols, uint64_t seed) {
+  cv::Mat noise(rows, cols, CV_8U);
+  cv::RNG rng(seed);
+  rng.fill(noise, cv::RNG::UNIFORM, 0, 255);
+  cv::Mat tex;
+  cv::GaussianBlur(noise, tex, cv::Size(0, 0), 3.0);
+  cv::normalize(tex, tex, 0, 255, cv::NORM_MINMAX);
+  // Sharp-edged random rectangles give corners at every scale.
+  for (int i = 0; i < rows * cols / 4000; ++i) {
+    const cv::Point p(rng.uniform(0, cols), rng.uniform(0, rows));
+    const cv::Size sz(rng.uniform(8, 60), rng.uniform(8, 60));
+    cv::rectangle(tex, cv::Rect(p, sz), cv::Scalar(rng.uniform(0, 255)), cv::FILLED);
+  }
+  return tex;
+}
+
+// A textured rectangle: texture pixel (j, i) lies at origin + j * du + i * dv in the world.
+struct Plane {
+  cv::Mat texture;
+  Eigen::Vector3d origin, du, dv;
+};
+
+// Camera frame at the start: x right, y down, z forward. Drawn in this order (each nearer
+// than what it covers).
+const std::vector<Plane>& Scene() {
+  const double s = kTexScale;
+  static const std::vector<Plane> planes = {
+      {Texture(1400, 2400, 1), {-2.4, -1.4, 2.5}, {s, 0, 0}, {0, s, 0}},  // far wall filling the view
+      {Texture(1000, 2000, 2), {-2.0, 0.3, 0.4}, {s, 0, 0}, {0, 0, s}},   // floor 0.3 m below, to the wall
+      {Texture(350, 350, 3), {-0.75, -0.5, 1.0}, {s, 0, 0}, {0, s, 0}},   // a near panel on the left
+  };
+  return planes;
+}
+
+// Image of the scene from a camera with pose T_c_w: each plane warped by its homography, the
+// near one drawn over the far one.
+cv::Mat Render(const Eigen::Isometry3d& T_c_w) {
+  Eigen::Matrix3d K;
+  K << kF, 0, (kW - 1) / 2.0, 0, kF, (kH - 1) / 2.0, 0, 0, 1;
+  cv::Mat grey(kH, kW, CV_8U, cv::Scalar(128));
+  for (const Plane& pl : Scene()) {
+    Eigen::Matrix3d A;  // texture pixel (j, i, 1) -> world point
+    A << pl.du, pl.dv, pl.origin;
+    Eigen::Matrix3d M = T_c_w.rotation() * A;
+    M.col(2) += T_c_w.translation();
+    const Eigen::Matrix3d H = K * M;
+    cv::Matx33d Hcv;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) Hcv(r, c) = H(r, c);
+    }
+    cv::Mat warped, mask;
+    cv::warpPerspective(pl.texture, warped, Hcv, grey.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+    cv::warpPerspective(cv::Mat(pl.texture.size(), CV_8U, cv::Scalar(255)), mask, Hcv, grey.size(), cv::INTER_NEAREST,
+                        cv::BORDER_CONSTANT);
+    warped.copyTo(grey, mask);
+  }
+  cv::Mat rgb;
+  cv::cvtColor(grey, rgb, cv::COLOR_GRAY2RGB);
+  return rgb;
+}
+
+Eigen::Isometry3d TruePose(int k) {  // camera in world: forward, sideways and a slow yaw
+  Eigen::Isometry3d T_w_c = Eigen::Isometry3d::Identity();
+  T_w_c.translation() = Eigen::Vector3d(0.008 * k, 0.0005 * k, 0.004 * k);
+  T_w_c.linear() = Eigen::AngleAxisd(0.002 * k, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  return T_w_c;
+}
+
+StereoFrame MakeFrame(int k) {
+  StereoFrame f;
+  f.t_ns = 1'000'000'000 + k * 50'000'000LL;
+  const Eigen::Isometry3d T_c_w = TruePose(k).inverse();
+  Eigen::Isometry3d T_right_left = Eigen::Isometry3d::Identity();
+  T_right_left.translation() = Eigen::Vector3d(-kBaseline, 0, 0);
+  f.left_rgb = Render(T_c_w);
+  f.right_rgb = Render(T_right_left * T_c_w);
+  f.intrinsics = {kW, kH, kF, kF, (kW - 1) / 2.0, (kH - 1) / 2.0};
+  f.baseline_m = kBaseline;
+  return f;
+}
+
+TEST(SlamSystem, TracksASyntheticWallSequenceToTheKnownPath) {
+  slam::SlamSettings settings;
+  slam::SlamSystem system(settings);
+  double worst_m = 0, worst_rad = 0;
+  int keyframes = 0;
+  for (int k = 0; k < kFrames; ++k) {
+    const slam::TrackResult r = system.Track(MakeFrame(k));
+    ASSERT_NE(r.status, slam::TrackStatus::kLost) << "frame " << k;
+    keyframes += r.keyframe ? 1 : 0;
+    // The map starts at the first camera, which is the world origin here.
+    worst_m = std::max(worst_m, (r.T_w_c.translation() - TruePose(k).translation()).norm());
+    worst_rad = std::max(worst_rad, Eigen::AngleAxisd(r.T_w_c.rotation().transpose() * TruePose(k).rotation()).angle());
+  }
+  system.Finish();
+  std::printf("%d frames, %.2f m path: worst position error %.2f mm, worst rotation error %.3f deg, %d keyframes\n",
+              kFrames, TruePose(kFrames - 1).translation().norm(), worst_m * 1e3, worst_rad * 180 / M_PI, keyframes);
+  EXPECT_LT(worst_m, 0.003);
+  EXPECT_LT(worst_rad, 0.2 * M_PI / 180);
+  EXPECT_GE(keyframes, 2);
+  EXPECT_EQ(system.Stats().lost_frames, 0);
+}
+
+TEST(SlamSystem, RefusesFramesOutOfOrderOrIncomplete) {
+  slam::SlamSystem system(slam::SlamSettings{});
+  system.Track(MakeFrame(0));
+  EXPECT_THROW(system.Track(MakeFrame(0)), InputError);  // same stamp again
+  StereoFrame no_right = MakeFrame(1);
+  no_right.right_rgb.release();
+  EXPECT_THROW(system.Track(no_right), InputError);
+  StereoFrame other_camera = MakeFrame(1);
+  other_camera.intrinsics.fx = 300;
+  EXPECT_THROW(system.Track(other_camera), InputError);
+  EXPECT_NO_THROW(system.Track(MakeFrame(1)));  // the system is still usable
+
+  slam::SlamSettings rgbd;
+  rgbd.input = "rgbd";
+  slam::SlamSystem rgbd_system(rgbd);
+  EXPECT_THROW(rgbd_system.Track(MakeFrame(0)), InputError);  // no depth image
+}
+
+}  // namespace
+}  // namespace viqu
