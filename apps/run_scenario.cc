@@ -103,13 +103,6 @@ sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const Pinhole
   return rig;
 }
 
-Eigen::Isometry3d ToIsometry(const StampedPose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = p.q_w_x.normalized().toRotationMatrix();
-  T.translation() = p.p_w_x;
-  return T;
-}
-
 }  // namespace
 
 int RunScenario(const Scenario& s, const RunOptions& opt) {

@@ -22,12 +22,6 @@ std::string DefaultOutDir(const std::string& dataset_dir) {
   return "runs/slam-" + p.filename().string();
 }
 
-Eigen::Isometry3d ToIsometry(const StampedPose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = p.q_w_x.normalized().toRotationMatrix();
-  T.translation() = p.p_w_x;
-  return T;
-}
 
 // The ground-truth pose nearest to t_ns within 0.02 s (as the evaluation associates), if any.
 const StampedPose* NearestPose(const eval::Trajectory& gt, int64_t t_ns) {

@@ -17,10 +17,7 @@ SlamRun::SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
 
 slam::TrackResult SlamRun::Track(const StereoFrame& frame) {
   const slam::TrackResult r = system_.Track(frame);
-  StampedPose p;
-  p.t_ns = r.t_ns;
-  p.q_w_x = Eigen::Quaterniond(r.T_w_c.rotation()).normalized();
-  p.p_w_x = r.T_w_c.translation();
+  const StampedPose p = ToStampedPose(r.t_ns, r.T_w_c);
   writer_.Add(p);
   est_.push_back(p);
   status_.push_back(r.status);

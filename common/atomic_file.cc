@@ -3,6 +3,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <string>
 
 #include <unistd.h>
 
@@ -21,6 +23,20 @@ void CommitTempFile(const std::string& tmp_path, const std::string& final_path) 
     std::remove(tmp_path.c_str());
     throw RunError("cannot rename " + tmp_path + " to " + final_path + ": " + why);
   }
+}
+
+void CommitTempDirectory(const std::string& from, const std::string& to) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const std::string old_dir = to + ".old." + std::to_string(::getpid());
+  const bool had_old = fs::exists(to, ec);
+  if (had_old) {
+    fs::rename(to, old_dir, ec);
+    if (ec) throw RunError("cannot move the old " + to + " aside: " + ec.message());
+  }
+  fs::rename(from, to, ec);
+  if (ec) throw RunError("cannot rename " + from + " to " + to + ": " + ec.message());
+  if (had_old) fs::remove_all(old_dir, ec);
 }
 
 void WriteFileAtomic(const std::string& path, const std::string& content) {

@@ -1,13 +1,17 @@
 #pragma once
-// Depth as a depth camera hands it out: whole steps of 1/scale metres, 0 where there is no
-// depth (non-finite, not positive, or beyond the 16-bit range).
+// Depth as a depth camera, or a 16-bit depth image, holds it: whole steps of 1/steps_per_m
+// metres, 0 where there is no depth (non-finite, not positive, or beyond the 16-bit range).
 #include <opencv2/core/mat.hpp>
 
 namespace viqu::sim {
 
-// Quantises CV_32F metric depth in place to steps of 1/scale m, computing the values exactly as
-// a reader converting the 16-bit image back (convertTo with factor 1/scale) does, so that a
-// recorded depth PNG replays bit for bit.
-void QuantiseDepth(cv::Mat* depth_m, double scale);
+// CV_32F metric depth to CV_16U steps (what the EuRoC and TUM recorders write as PNG).
+// Throws RunError for another type.
+cv::Mat DepthToSteps(const cv::Mat& depth_m, double steps_per_m);
+
+// Quantises CV_32F metric depth in place to steps of 1/steps_per_m m, with the values computed
+// exactly as a reader converting the 16-bit image back (convertTo with factor 1/steps_per_m)
+// gets them, so that a recorded depth PNG replays bit for bit.
+void QuantiseDepth(cv::Mat* depth_m, double steps_per_m);
 
 }  // namespace viqu::sim

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <vector>
 
-#include <unistd.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "common/atomic_file.h"
 #include "common/errors.h"
+#include "sim/depth_quantisation.h"
 
 namespace viqu::sim {
 namespace {
@@ -154,17 +154,7 @@ void EurocRecorder::AddFrame(const StereoFrame& frame) {
   WriteImage("cam1", &cam1_, frame.t_ns, bgr);
 
   if (rig_.camera.depth && !frame.left_depth_m.empty()) {
-    if (frame.left_depth_m.type() != CV_32F) throw RunError("EurocRecorder: depth must be CV_32F (m)");
-    cv::Mat mm(frame.left_depth_m.size(), CV_16U);
-    for (int r = 0; r < mm.rows; ++r) {
-      const float* src = frame.left_depth_m.ptr<float>(r);
-      uint16_t* dst = mm.ptr<uint16_t>(r);
-      for (int c = 0; c < mm.cols; ++c) {
-        const double v = std::round(static_cast<double>(src[c]) / kDepthUnitM);
-        dst[c] = (std::isfinite(v) && v > 0 && v <= 65535) ? static_cast<uint16_t>(v) : 0;
-      }
-    }
-    WriteImage("depth0", &depth0_, frame.t_ns, mm);
+    WriteImage("depth0", &depth0_, frame.t_ns, DepthToSteps(frame.left_depth_m, 1.0 / kDepthUnitM));
   }
   if (rig_.camera.segmentation && !frame.left_instance_id.empty()) {
     if (frame.left_instance_id.type() != CV_16U) throw RunError("EurocRecorder: instance ids must be CV_16U");
@@ -269,16 +259,7 @@ void EurocRecorder::Finish() {
     if (s->file) s->file->Commit();
   }
   // Swap the finished folder into place; an old dataset under the final name is replaced.
-  std::error_code ec;
-  const std::string old_dir = final_dir_ + ".old." + std::to_string(::getpid());
-  const bool had_old = fs::exists(final_dir_, ec);
-  if (had_old) {
-    fs::rename(final_dir_, old_dir, ec);
-    if (ec) throw RunError("cannot move the old " + final_dir_ + " aside: " + ec.message());
-  }
-  fs::rename(partial_dir_, final_dir_, ec);
-  if (ec) throw RunError("cannot rename " + partial_dir_ + " to " + final_dir_ + ": " + ec.message());
-  if (had_old) fs::remove_all(old_dir, ec);
+  CommitTempDirectory(partial_dir_, final_dir_);
   finished_ = true;
 }
 

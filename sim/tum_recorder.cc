@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <vector>
 
-#include <unistd.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "common/atomic_file.h"
 #include "common/errors.h"
+#include "sim/depth_quantisation.h"
 
 namespace viqu::sim {
 namespace {
@@ -75,17 +75,7 @@ void TumRecorder::AddFrame(const StereoFrame& frame) {
   cv::cvtColor(frame.left_rgb, bgr, cv::COLOR_RGB2BGR);
   WriteImage("rgb", &rgb_, frame.t_ns, bgr);
   if (frame.left_depth_m.empty()) return;
-  if (frame.left_depth_m.type() != CV_32F) throw RunError("TumRecorder: depth must be CV_32F (m)");
-  cv::Mat scaled(frame.left_depth_m.size(), CV_16U);
-  for (int r = 0; r < scaled.rows; ++r) {
-    const float* src = frame.left_depth_m.ptr<float>(r);
-    uint16_t* dst = scaled.ptr<uint16_t>(r);
-    for (int c = 0; c < scaled.cols; ++c) {
-      const double v = std::round(static_cast<double>(src[c]) * kDepthScale);
-      dst[c] = (std::isfinite(v) && v > 0 && v <= 65535) ? static_cast<uint16_t>(v) : 0;  // 0 = no depth
-    }
-  }
-  WriteImage("depth", &depth_, frame.t_ns, scaled);
+  WriteImage("depth", &depth_, frame.t_ns, DepthToSteps(frame.left_depth_m, kDepthScale));
 }
 
 void TumRecorder::AddGroundTruth(const GroundTruthState& state) {
@@ -114,16 +104,7 @@ void TumRecorder::Finish() {
   depth_.file->Commit();
   groundtruth_->Close();
   // Swap the finished folder into place; an old dataset under the final name is replaced.
-  std::error_code ec;
-  const std::string old_dir = final_dir_ + ".old." + std::to_string(::getpid());
-  const bool had_old = fs::exists(final_dir_, ec);
-  if (had_old) {
-    fs::rename(final_dir_, old_dir, ec);
-    if (ec) throw RunError("cannot move the old " + final_dir_ + " aside: " + ec.message());
-  }
-  fs::rename(partial_dir_, final_dir_, ec);
-  if (ec) throw RunError("cannot rename " + partial_dir_ + " to " + final_dir_ + ": " + ec.message());
-  if (had_old) fs::remove_all(old_dir, ec);
+  CommitTempDirectory(partial_dir_, final_dir_);
   finished_ = true;
 }
 

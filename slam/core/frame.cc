@@ -47,4 +47,13 @@ int Frame::MatchedCount() const {
   return n;
 }
 
+void Frame::ForgetOutliers() {
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (outlier[i]) {
+      points[i] = nullptr;
+      outlier[i] = false;
+    }
+  }
+}
+
 }  // namespace viqu::slam

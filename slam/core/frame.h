@@ -2,6 +2,7 @@
 // One tracked image: its features with stereo depth, a grid for searching features by area, the
 // map points matched to them and the camera pose. Keyframes keep the frame's features by sharing
 // the same FrameFeatures.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -53,6 +54,13 @@ struct Frame {
   size_t size() const { return points.size(); }
   Eigen::Vector3d Center() const { return T_c_w.inverse().translation(); }
   int MatchedCount() const;
+  // Unmatches every feature.
+  void ClearMatches() {
+    std::fill(points.begin(), points.end(), nullptr);
+    std::fill(outlier.begin(), outlier.end(), false);
+  }
+  // Unmatches the features that pose optimisation rejected.
+  void ForgetOutliers();
 };
 
 }  // namespace viqu::slam

@@ -9,32 +9,16 @@
 
 #include "slam/core/map.h"
 #include "slam/core/reprojection_cost.h"
+#include "slam/core/reprojection_error.h"
 
 namespace viqu::slam {
 namespace {
-
-constexpr double kChi2Mono = 5.991;
-constexpr double kChi2Stereo = 7.815;
 
 struct Observation {
   KeyFrame* kf;
   MapPoint* point;
   int idx;
 };
-
-double ObservationChi2(const StereoCamera& cam, const KeyFrame& kf, int idx, const Eigen::Vector3d& p_w) {
-  const FrameFeatures& f = *kf.features;
-  const Eigen::Vector3d pc = kf.T_c_w * p_w;
-  if (pc.z() <= 1e-3) return 1e9;
-  const cv::KeyPoint& kp = f.keypoints[idx];
-  const Eigen::Vector2d uv = cam.Project(pc);
-  double e2 = (uv - Eigen::Vector2d(kp.pt.x, kp.pt.y)).squaredNorm();
-  if (f.u_right[idx] >= 0) {
-    const double er = uv.x() - cam.bf / pc.z() - f.u_right[idx];
-    e2 += er * er;
-  }
-  return e2 / f.level_sigma2[kp.octave];
-}
 
 }  // namespace
 
@@ -142,14 +126,13 @@ LocalBaResult LocalBundleAdjustment(const StereoCamera& cam, const LocalBaOption
     if (o.point->bad || o.kf->bad) continue;
     auto it = o.point->observations.find(o.kf);
     if (it == o.point->observations.end() || it->second != o.idx) continue;
-    const double th = o.kf->features->u_right[o.idx] >= 0 ? kChi2Stereo : kChi2Mono;
-    if (ObservationChi2(cam, *o.kf, o.idx, o.point->p_w) > th) {
+    if (!IsInlierObservation(cam, *o.kf->features, o.idx, o.kf->T_c_w * o.point->p_w)) {
       Map::EraseObservation(o.point, o.kf);
       ++res.removed_observations;
     }
   }
   for (MapPoint* p : points) {
-    if (!p->bad) p->UpdateFromObservations(cam);
+    if (!p->bad) p->UpdateFromObservations();
   }
   return res;
 }

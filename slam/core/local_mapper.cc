@@ -6,17 +6,15 @@
 #include <set>
 
 #include "slam/core/map.h"
+#include "slam/core/reprojection_error.h"
 
 namespace viqu::slam {
 namespace {
 
-constexpr double kChi2Mono = 5.991;
-constexpr double kChi2Stereo = 7.815;
-
+// Triangulation and fusion use the strict descriptor thresholds (MatcherOptions defaults).
 MatcherOptions MapperMatcherOptions(const SlamSettings& s) {
   MatcherOptions m;
   m.max_hamming = s.tracking.max_hamming;
-  m.ratio = 0.6;  // triangulation and fusion want unambiguous matches
   return m;
 }
 
@@ -36,20 +34,6 @@ bool Triangulate(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2, const Eig
   if (std::abs(h.w()) < 1e-12) return false;
   *p = h.head<3>() / h.w();
   return p->allFinite();
-}
-
-bool ReprojectionOk(const StereoCamera& cam, const FrameFeatures& f, int idx, const Eigen::Vector3d& pc) {
-  if (pc.z() <= 0) return false;
-  const cv::KeyPoint& kp = f.keypoints[idx];
-  const Eigen::Vector2d uv = cam.Project(pc);
-  double e2 = (uv - Eigen::Vector2d(kp.pt.x, kp.pt.y)).squaredNorm();
-  double th = kChi2Mono;
-  if (f.u_right[idx] >= 0) {
-    const double er = cam.ProjectRight(pc) - f.u_right[idx];
-    e2 += er * er;
-    th = kChi2Stereo;
-  }
-  return e2 / f.level_sigma2[kp.octave] <= th;
 }
 
 }  // namespace
@@ -148,7 +132,7 @@ void LocalMapper::LinkObservations(KeyFrame* kf) {
     auto it = p->observations.find(kf);
     if (it == p->observations.end()) {
       Map::AddObservation(p, kf, static_cast<int>(i));
-      p->UpdateFromObservations(cam_);
+      p->UpdateFromObservations();
     } else if (it->second != static_cast<int>(i)) {
       kf->points[i] = nullptr;  // the point is already tied to another feature of this keyframe
     }
@@ -213,7 +197,7 @@ int LocalMapper::TriangulateNewPoints(KeyFrame* kf) {
         continue;  // too little parallax and no stereo depth
       }
       const Eigen::Vector3d p1 = T1 * p, p2 = T2 * p;
-      if (!ReprojectionOk(cam_, f1, i1, p1) || !ReprojectionOk(cam_, f2, i2, p2)) continue;
+      if (!IsInlierObservation(cam_, f1, i1, p1) || !IsInlierObservation(cam_, f2, i2, p2)) continue;
       // Scale consistency: distance ratio against the levels' scale ratio.
       const double d1 = (p - c1).norm(), d2 = (p - c2).norm();
       if (d1 <= 0 || d2 <= 0) continue;
@@ -224,7 +208,7 @@ int LocalMapper::TriangulateNewPoints(KeyFrame* kf) {
       MapPoint* mp = map_->AddPoint(p, kf);
       Map::AddObservation(mp, kf, i1);
       Map::AddObservation(mp, kf2, i2);
-      mp->UpdateFromObservations(cam_);
+      mp->UpdateFromObservations();
       created_points.push_back(mp);
       ++created;
     }
@@ -258,7 +242,7 @@ void LocalMapper::FuseWithNeighbours(KeyFrame* kf) {
   std::sort(theirs.begin(), theirs.end(), [](const MapPoint* a, const MapPoint* b) { return a->id < b->id; });
   matcher_.Fuse(kf, theirs, 3.0);
   for (MapPoint* p : kf->points) {
-    if (p && !p->bad) p->UpdateFromObservations(cam_);
+    if (p && !p->bad) p->UpdateFromObservations();
   }
   kf->UpdateConnections(settings_.mapping.covisibility_min);
 }

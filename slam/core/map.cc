@@ -20,7 +20,7 @@ int DescriptorDistance(const uint8_t* a, const uint8_t* b) {
 
 int DescriptorDistance(const cv::Mat& a, const cv::Mat& b) { return DescriptorDistance(a.ptr<uint8_t>(), b.ptr<uint8_t>()); }
 
-void MapPoint::UpdateFromObservations(const StereoCamera& /*cam*/) {
+void MapPoint::UpdateFromObservations() {
   if (observations.empty()) return;
   // Descriptor: the one with the least median distance to the others.
   std::vector<const uint8_t*> descs;

@@ -43,7 +43,7 @@ class MapPoint {
   bool bad = false;
 
   // Recomputes descriptor, normal and distance range from the observations.
-  void UpdateFromObservations(const StereoCamera& cam);
+  void UpdateFromObservations();
   // Pyramid level expected at distance `dist`.
   int PredictLevel(double dist, const FrameFeatures& f) const;
   // Observations counted as ORB-SLAM counts them: a stereo observation (with a right-image

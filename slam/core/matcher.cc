@@ -6,12 +6,10 @@
 #include <set>
 
 #include "slam/core/map.h"
+#include "slam/core/reprojection_error.h"
 
 namespace viqu::slam {
 namespace {
-
-constexpr double kChi2Mono = 5.991;
-constexpr double kChi2Stereo = 7.815;
 
 struct Best {
   int idx = -1;
@@ -53,7 +51,7 @@ int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) co
     for (int j : cand) {
       if (cur->points[j] && !cur->points[j]->bad) continue;
       if (f.u_right[j] >= 0 && std::abs(ur - f.u_right[j]) > r) continue;
-      b.Offer(j, DescriptorDistance(p->descriptor, f.descriptors.row(j)), f.keypoints[j].octave);
+      b.Offer(j, DescriptorDistance(p->descriptor.ptr<uint8_t>(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
     }
     if (b.idx >= 0 && b.dist <= opt_.max_hamming) {
       cur->points[b.idx] = p;
@@ -93,7 +91,7 @@ int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radi
     for (int j : cand) {
       if (cur->points[j] && !cur->points[j]->bad && !cur->outlier[j] && cur->points[j]->observations.size() > 0) continue;
       if (f.u_right[j] >= 0 && std::abs(ur - f.u_right[j]) > r) continue;
-      b.Offer(j, DescriptorDistance(p->descriptor, f.descriptors.row(j)), f.keypoints[j].octave);
+      b.Offer(j, DescriptorDistance(p->descriptor.ptr<uint8_t>(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
     }
     if (b.idx < 0 || b.dist > opt_.max_hamming) continue;
     if (b.best_level == b.second_level && b.dist > opt_.ratio * b.second) continue;
@@ -203,7 +201,6 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
     if (pc.z() <= 0) continue;
     const Eigen::Vector2d uv = cam_.Project(pc);
     if (!cam_.InImage(uv.x(), uv.y())) continue;
-    const double ur = cam_.ProjectRight(pc);
     const Eigen::Vector3d ray = p->p_w - center;
     const double dist = ray.norm();
     if (dist < 0.8 * p->min_distance || dist > 1.2 * p->max_distance) continue;
@@ -211,19 +208,9 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
     const int level = p->PredictLevel(dist, f);
     const double r = radius * f.level_scale[level];
     Best b;
-    for (int j : f.InArea(uv.x(), uv.y(), r)) {
-      const cv::KeyPoint& kp = f.keypoints[j];
-      if (kp.octave < level - 1 || kp.octave > level) continue;
-      const double eu = uv.x() - kp.pt.x, ev = uv.y() - kp.pt.y;
-      double e2 = eu * eu + ev * ev;
-      double th = kChi2Mono;
-      if (f.u_right[j] >= 0) {
-        const double er = ur - f.u_right[j];
-        e2 += er * er;
-        th = kChi2Stereo;
-      }
-      if (e2 / f.level_sigma2[kp.octave] > th) continue;
-      b.Offer(j, DescriptorDistance(p->descriptor, f.descriptors.row(j)), kp.octave);
+    for (int j : f.InArea(uv.x(), uv.y(), r, level - 1, level)) {
+      if (!IsInlierObservation(cam_, f, j, pc)) continue;
+      b.Offer(j, DescriptorDistance(p->descriptor.ptr<uint8_t>(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
     }
     if (b.idx < 0 || b.dist > opt_.strict_hamming) continue;
     MapPoint* other = kf->points[b.idx];

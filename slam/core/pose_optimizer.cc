@@ -5,31 +5,16 @@
 
 #include "slam/core/map.h"
 #include "slam/core/reprojection_cost.h"
+#include "slam/core/reprojection_error.h"
 
 namespace viqu::slam {
 namespace {
-
-constexpr double kChi2Mono = 5.991;
-constexpr double kChi2Stereo = 7.815;
 
 struct Obs {
   int idx;
   bool stereo;
   Eigen::Vector3d p_w;
 };
-
-double Chi2(const StereoCamera& cam, const FrameFeatures& f, const Obs& o, const Eigen::Isometry3d& T) {
-  const Eigen::Vector3d pc = T * o.p_w;
-  if (pc.z() <= 1e-4) return 1e9;
-  const cv::KeyPoint& kp = f.keypoints[o.idx];
-  const Eigen::Vector2d uv = cam.Project(pc);
-  double e2 = (uv - Eigen::Vector2d(kp.pt.x, kp.pt.y)).squaredNorm();
-  if (o.stereo) {
-    const double er = uv.x() - cam.bf / pc.z() - f.u_right[o.idx];
-    e2 += er * er;
-  }
-  return e2 / f.level_sigma2[kp.octave];
-}
 
 }  // namespace
 
@@ -83,8 +68,7 @@ int OptimizePose(const StereoCamera& cam, const PoseOptimizerOptions& opt, Frame
     const Eigen::Isometry3d T = ParamsToPose(q);
     inliers = 0;
     for (const Obs& o : obs) {
-      const double chi2 = Chi2(cam, f, o, T);
-      frame->outlier[o.idx] = chi2 > (o.stereo ? kChi2Stereo : kChi2Mono);
+      frame->outlier[o.idx] = !IsInlierObservation(cam, f, o.idx, T * o.p_w);
       if (!frame->outlier[o.idx]) ++inliers;
     }
     if (inliers < 10) break;

@@ -142,7 +142,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, LocalMapper* mapper) {
   if (!initialised_ || reinitialise) {
     // A new map segment continues from the last estimate (dead reckoning through the outage).
     cur_.T_c_w = initialised_ ? (have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w) : Eigen::Isometry3d::Identity();
-    if (Initialise(&r)) {
+    if (Initialise()) {
       r.status = TrackStatus::kInitialised;
       r.keyframe = true;
       // A first keyframe has nothing to triangulate with; a new segment's goes to mapping.
@@ -193,22 +193,16 @@ TrackResult Tracker::Track(const StereoFrame& frame, LocalMapper* mapper) {
     // No visual pose: carry the motion-model prediction so that the trajectory has no gap.
     cur_.T_c_w = have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w;
     DropTemporaryPoints(&cur_);
-    std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
+    cur_.ClearMatches();
   }
   // Outliers are forgotten before the frame becomes the last frame.
-  for (size_t i = 0; i < cur_.size(); ++i) {
-    if (cur_.outlier[i]) {
-      cur_.points[i] = nullptr;
-      cur_.outlier[i] = false;
-    }
-  }
+  cur_.ForgetOutliers();
   r.T_w_c = cur_.T_c_w.inverse();
   last_ = cur_;
   return r;
 }
 
-bool Tracker::Initialise(TrackResult* r) {
-  (void)r;
+bool Tracker::Initialise() {
   const FrameFeatures& f = *cur_.features;
   int with_depth = 0;
   for (float d : f.depth) with_depth += d > 0 ? 1 : 0;
@@ -220,7 +214,7 @@ bool Tracker::Initialise(TrackResult* r) {
     if (f.depth[i] <= 0) continue;
     MapPoint* p = map_->AddPoint(T_w_c * f.Unproject(cam_, static_cast<int>(i)), kf);
     Map::AddObservation(p, kf, static_cast<int>(i));
-    p->UpdateFromObservations(cam_);
+    p->UpdateFromObservations();
     cur_.points[i] = p;
   }
   initialised_ = true;
@@ -279,12 +273,7 @@ bool Tracker::TrackWithMotionModel() {
   int best = -1;
   Frame best_frame;
   auto keep_if_best = [&](int inliers) {
-    for (size_t i = 0; i < cur_.size(); ++i) {
-      if (cur_.outlier[i]) {
-        cur_.points[i] = nullptr;
-        cur_.outlier[i] = false;
-      }
-    }
+    cur_.ForgetOutliers();
     if (inliers > best) {
       best = inliers;
       best_frame = cur_;
@@ -292,8 +281,7 @@ bool Tracker::TrackWithMotionModel() {
   };
   for (const auto& [pose, r] : attempts) {
     cur_.T_c_w = pose;
-    std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
-    std::fill(cur_.outlier.begin(), cur_.outlier.end(), false);
+    cur_.ClearMatches();
     if (matcher_->SearchByProjection(last_, r, &cur_) < settings_.tracking.min_inliers_motion) continue;
     keep_if_best(OptimizePose(cam_, pose_opt_, &cur_));
     if (best >= good) break;
@@ -313,17 +301,12 @@ bool Tracker::TrackReferenceKeyFrame() {
       }
     }
   }
-  std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
+  cur_.ClearMatches();
   const int n = matcher_->SearchByDescriptor(*reference_, &cur_);
   if (n < 15) return false;
   cur_.T_c_w = last_.T_c_w;
   const int inliers = OptimizePose(cam_, pose_opt_, &cur_);
-  for (size_t i = 0; i < cur_.size(); ++i) {
-    if (cur_.outlier[i]) {
-      cur_.points[i] = nullptr;
-      cur_.outlier[i] = false;
-    }
-  }
+  cur_.ForgetOutliers();
   return inliers >= 10;
 }
 
@@ -375,12 +358,7 @@ int Tracker::TrackLocalMap() {
   if (inliers < kWeakInliersFactor * settings_.tracking.min_inliers) {
     // Few matches usually mean a poor prediction (a jolt of the trunk): search again from the
     // optimised pose with a window three times as wide.
-    for (size_t i = 0; i < cur_.size(); ++i) {
-      if (cur_.outlier[i]) {
-        cur_.points[i] = nullptr;
-        cur_.outlier[i] = false;
-      }
-    }
+    cur_.ForgetOutliers();
     matcher_->SearchLocalPoints(local_points_, 3 * settings_.tracking.local_map_search_px, &cur_);
     inliers = OptimizePose(cam_, pose_opt_, &cur_);
   }
@@ -412,8 +390,7 @@ bool Tracker::Relocalise() {
     if (chosen.insert(by_distance[i]).second) cands.push_back(by_distance[i]);
   }
   for (KeyFrame* kf : cands) {
-    std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
-    std::fill(cur_.outlier.begin(), cur_.outlier.end(), false);
+    cur_.ClearMatches();
     const int n = matcher_->SearchByDescriptor(*kf, &cur_);
     if (n < 15) continue;
     std::vector<cv::Point3f> obj;
@@ -460,9 +437,7 @@ bool Tracker::Relocalise() {
         if (p && !p->bad && seen.insert(p).second) pts.push_back(p);
       }
     }
-    for (size_t i = 0; i < cur_.size(); ++i) {
-      if (cur_.outlier[i]) cur_.points[i] = nullptr;
-    }
+    cur_.ForgetOutliers();
     matcher_->SearchLocalPoints(pts, 10.0, &cur_);
     inliers = OptimizePose(cam_, pose_opt_, &cur_);
     if (inliers >= settings_.tracking.relocalise_min_inliers) {
@@ -470,17 +445,11 @@ bool Tracker::Relocalise() {
       // The next frame is predicted at this pose (no motion) and searched with the wide window.
       velocity_ = Eigen::Isometry3d::Identity();
       have_velocity_ = true;
-      for (size_t i = 0; i < cur_.size(); ++i) {
-        if (cur_.outlier[i]) {
-          cur_.points[i] = nullptr;
-          cur_.outlier[i] = false;
-        }
-      }
+      cur_.ForgetOutliers();
       return true;
     }
   }
-  std::fill(cur_.points.begin(), cur_.points.end(), nullptr);
-  std::fill(cur_.outlier.begin(), cur_.outlier.end(), false);
+  cur_.ClearMatches();
   return false;
 }
 
@@ -534,7 +503,7 @@ KeyFrame* Tracker::CreateKeyFrame(LocalMapper* mapper) {
     if (kf->points[i]) continue;
     MapPoint* p = map_->AddPoint(T_w_c * f.Unproject(cam_, i), kf);
     Map::AddObservation(p, kf, i);
-    p->UpdateFromObservations(cam_);
+    p->UpdateFromObservations();
     cur_.points[i] = p;
     created.push_back(p);
   }

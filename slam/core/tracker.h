@@ -44,7 +44,7 @@ class Tracker {
 
  private:
   std::shared_ptr<FrameFeatures> ExtractFeatures(const StereoFrame& frame) const;
-  bool Initialise(TrackResult* r);
+  bool Initialise();
   void AddTemporaryPointsToLastFrame();
   bool TrackWithMotionModel();
   bool TrackReferenceKeyFrame();

@@ -8,16 +8,6 @@
 #include "common/errors.h"
 
 namespace viqu::eval {
-namespace {
-
-Eigen::Isometry3d ToIsometry(const StampedPose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = p.q_w_x.toRotationMatrix();
-  T.translation() = p.p_w_x;
-  return T;
-}
-
-}  // namespace
 
 ErrorStats ComputeStats(std::vector<double> e) {
   ErrorStats s;

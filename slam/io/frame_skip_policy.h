@@ -1,5 +1,8 @@
 #pragma once
+#include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace viqu::io {
 
@@ -24,5 +27,25 @@ class FrameSkipPolicy {
   bool last_bad_ = false;  // the frame before this one could not be read
   int skipped_ = 0;        // frames skipped so far
 };
+
+// The next frame that `read(items[i], &frame, &why)` manages to read, from items[*next] on;
+// unreadable ones are handed to `skip` (warned about and skipped, or InputError). *frame is left
+// untouched by a skipped frame. Returns false after the last item.
+template <class Item, class Frame, class Read>
+bool NextReadable(const std::vector<Item>& items, size_t* next, FrameSkipPolicy* skip, Frame* frame, Read read) {
+  while (*next < items.size()) {
+    const Item& item = items[(*next)++];
+    std::string why;
+    Frame f;
+    if (!read(item, &f, &why)) {
+      skip->Bad(why);
+      continue;
+    }
+    *frame = std::move(f);
+    skip->Good();
+    return true;
+  }
+  return false;
+}
 
 }  // namespace viqu::io

@@ -138,19 +138,9 @@ bool ViquDatasetReader::ReadFrame(const ImagePair& files, StereoFrame* frame, st
 }
 
 bool ViquDatasetReader::Next(StereoFrame* frame) {
-  while (next_ < frames_.size()) {
-    const ImagePair& files = frames_[next_++];
-    std::string why;
-    StereoFrame f;  // *frame stays untouched by a frame that is skipped
-    if (!ReadFrame(files, &f, &why)) {
-      skip_.Bad(why);
-      continue;
-    }
-    *frame = std::move(f);
-    skip_.Good();
-    return true;
-  }
-  return false;
+  return NextReadable(frames_, &next_, &skip_, frame, [this](const ImagePair& files, StereoFrame* f, std::string* why) {
+    return ReadFrame(files, f, why);
+  });
 }
 
 }  // namespace viqu::io
