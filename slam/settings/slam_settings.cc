@@ -1,11 +1,10 @@
 #include "slam/settings/slam_settings.h"
 
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 
 #include <yaml-cpp/yaml.h>
 
+#include "common/yaml_emit.h"
 #include "common/yaml_strict.h"
 
 namespace viqu::slam {
@@ -106,27 +105,6 @@ void ReadMapping(YamlMapReader* m, MappingSettings* p) {
   m->RejectUnknownKeys();
 }
 
-// The shortest of %.15g / %.17g that reads back as the same double.
-std::string Num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.15g", v);
-  if (std::strtod(buf, nullptr) != v) std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
-}
-
-void Number(YAML::Emitter& out, const std::string& key, double value) {
-  out << YAML::Key << key << YAML::Value << Num(value);
-}
-
-void Int(YAML::Emitter& out, const std::string& key, int value) {
-  out << YAML::Key << key << YAML::Value << std::to_string(value);
-}
-
-// A value from a fixed set of plain words (stereo, sync, ...): no quotes needed.
-void Word(YAML::Emitter& out, const std::string& key, const std::string& value) {
-  out << YAML::Key << key << YAML::Value << value;
-}
-
 }  // namespace
 
 SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides) {
@@ -154,8 +132,8 @@ SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::st
   // The matcher searches right keypoints at the extractor's pyramid levels: the scales must agree.
   if (s.stereo.scale_factor != s.orb.scale_factor) {
     FailAtEither(&stereo, "scale_factor", &orb, "scale_factor",
-                 "key 'stereo.scale_factor' (" + Num(s.stereo.scale_factor) + ") must equal 'orb.scale_factor' (" +
-                     Num(s.orb.scale_factor) + "): the stereo matcher works on the extractor's pyramid; set both");
+                 "key 'stereo.scale_factor' (" + YamlNumberText(s.stereo.scale_factor) + ") must equal 'orb.scale_factor' (" +
+                     YamlNumberText(s.orb.scale_factor) + "): the stereo matcher works on the extractor's pyramid; set both");
   }
   return s;
 }
@@ -168,61 +146,61 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   if (!s.source_file.empty()) header += "; read from " + s.source_file;
   out << YAML::Comment(header) << YAML::Newline;
   out << YAML::BeginMap;
-  Word(out, "input", s.input);
-  Number(out, "rgbd_max_depth_m", s.rgbd_max_depth_m);
-  Number(out, "rgbd_virtual_baseline_m", s.rgbd_virtual_baseline_m);
+  EmitWord(out, "input", s.input);
+  EmitNumber(out, "rgbd_max_depth_m", s.rgbd_max_depth_m);
+  EmitNumber(out, "rgbd_virtual_baseline_m", s.rgbd_virtual_baseline_m);
 
   out << YAML::Key << "orb" << YAML::Value << YAML::BeginMap;
-  Int(out, "num_features", s.orb.num_features);
-  Number(out, "scale_factor", s.orb.scale_factor);
-  Int(out, "num_levels", s.orb.num_levels);
-  Int(out, "fast_threshold", s.orb.fast_threshold);
-  Int(out, "fast_threshold_min", s.orb.fast_threshold_min);
-  Int(out, "cell_px", s.orb.cell_px);
+  EmitInt(out, "num_features", s.orb.num_features);
+  EmitNumber(out, "scale_factor", s.orb.scale_factor);
+  EmitInt(out, "num_levels", s.orb.num_levels);
+  EmitInt(out, "fast_threshold", s.orb.fast_threshold);
+  EmitInt(out, "fast_threshold_min", s.orb.fast_threshold_min);
+  EmitInt(out, "cell_px", s.orb.cell_px);
   out << YAML::EndMap;
 
   out << YAML::Key << "stereo" << YAML::Value << YAML::BeginMap;
-  Int(out, "max_hamming", s.stereo.max_hamming);
-  Number(out, "row_band_px", s.stereo.row_band_px);
-  Int(out, "sad_half_window", s.stereo.sad_half_window);
-  Int(out, "sad_search_px", s.stereo.sad_search_px);
-  Number(out, "max_ratio", s.stereo.max_ratio);
-  Number(out, "min_depth_m", s.stereo.min_depth_m);
-  Number(out, "max_depth_baselines", s.stereo.max_depth_baselines);
-  Number(out, "scale_factor", s.stereo.scale_factor);
-  Number(out, "sad_outlier_factor", s.stereo.sad_outlier_factor);
-  Number(out, "sad_uniqueness", s.stereo.sad_uniqueness);
+  EmitInt(out, "max_hamming", s.stereo.max_hamming);
+  EmitNumber(out, "row_band_px", s.stereo.row_band_px);
+  EmitInt(out, "sad_half_window", s.stereo.sad_half_window);
+  EmitInt(out, "sad_search_px", s.stereo.sad_search_px);
+  EmitNumber(out, "max_ratio", s.stereo.max_ratio);
+  EmitNumber(out, "min_depth_m", s.stereo.min_depth_m);
+  EmitNumber(out, "max_depth_baselines", s.stereo.max_depth_baselines);
+  EmitNumber(out, "scale_factor", s.stereo.scale_factor);
+  EmitNumber(out, "sad_outlier_factor", s.stereo.sad_outlier_factor);
+  EmitNumber(out, "sad_uniqueness", s.stereo.sad_uniqueness);
   out << YAML::EndMap;
 
   const TrackingSettings& t = s.tracking;
   out << YAML::Key << "tracking" << YAML::Value << YAML::BeginMap;
-  Number(out, "motion_search_px", t.motion_search_px);
-  Number(out, "local_map_search_px", t.local_map_search_px);
-  Int(out, "max_hamming", t.max_hamming);
-  Number(out, "match_ratio", t.match_ratio);
-  Int(out, "min_inliers", t.min_inliers);
-  Int(out, "min_inliers_motion", t.min_inliers_motion);
-  Int(out, "local_keyframes", t.local_keyframes);
-  Number(out, "huber_px", t.huber_px);
-  Int(out, "pose_iterations", t.pose_iterations);
-  Int(out, "keyframe_max_frames", t.keyframe_max_frames);
-  Int(out, "keyframe_min_frames", t.keyframe_min_frames);
-  Number(out, "keyframe_ratio", t.keyframe_ratio);
-  Int(out, "close_points_min", t.close_points_min);
-  Int(out, "relocalise_min_inliers", t.relocalise_min_inliers);
+  EmitNumber(out, "motion_search_px", t.motion_search_px);
+  EmitNumber(out, "local_map_search_px", t.local_map_search_px);
+  EmitInt(out, "max_hamming", t.max_hamming);
+  EmitNumber(out, "match_ratio", t.match_ratio);
+  EmitInt(out, "min_inliers", t.min_inliers);
+  EmitInt(out, "min_inliers_motion", t.min_inliers_motion);
+  EmitInt(out, "local_keyframes", t.local_keyframes);
+  EmitNumber(out, "huber_px", t.huber_px);
+  EmitInt(out, "pose_iterations", t.pose_iterations);
+  EmitInt(out, "keyframe_max_frames", t.keyframe_max_frames);
+  EmitInt(out, "keyframe_min_frames", t.keyframe_min_frames);
+  EmitNumber(out, "keyframe_ratio", t.keyframe_ratio);
+  EmitInt(out, "close_points_min", t.close_points_min);
+  EmitInt(out, "relocalise_min_inliers", t.relocalise_min_inliers);
   out << YAML::EndMap;
 
   const MappingSettings& m = s.mapping;
   out << YAML::Key << "mapping" << YAML::Value << YAML::BeginMap;
-  Word(out, "mode", m.mode);
-  Int(out, "ba_window", m.ba_window);
-  Int(out, "ba_iterations", m.ba_iterations);
-  Number(out, "ba_huber_px", m.ba_huber_px);
-  Int(out, "covisibility_min", m.covisibility_min);
-  Int(out, "triangulation_neighbours", m.triangulation_neighbours);
-  Number(out, "min_parallax_deg", m.min_parallax_deg);
-  Number(out, "culling_found_ratio", m.culling_found_ratio);
-  Number(out, "redundant_keyframe_ratio", m.redundant_keyframe_ratio);
+  EmitWord(out, "mode", m.mode);
+  EmitInt(out, "ba_window", m.ba_window);
+  EmitInt(out, "ba_iterations", m.ba_iterations);
+  EmitNumber(out, "ba_huber_px", m.ba_huber_px);
+  EmitInt(out, "covisibility_min", m.covisibility_min);
+  EmitInt(out, "triangulation_neighbours", m.triangulation_neighbours);
+  EmitNumber(out, "min_parallax_deg", m.min_parallax_deg);
+  EmitNumber(out, "culling_found_ratio", m.culling_found_ratio);
+  EmitNumber(out, "redundant_keyframe_ratio", m.redundant_keyframe_ratio);
   out << YAML::EndMap;
 
   out << YAML::EndMap;
