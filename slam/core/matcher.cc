@@ -30,6 +30,31 @@ struct Best {
   }
 };
 
+// How a map point would appear in an image taken from pose T_c_w (camera centre `center`).
+struct View {
+  Eigen::Vector3d p_c;   // point in the camera frame
+  Eigen::Vector2d uv;    // pixel
+  int level = 0;         // predicted pyramid level
+  double view_cos = 1;   // cosine between the viewing ray and the point's mean viewing direction
+};
+
+// False when the point is behind the camera, outside the image, outside its scale-invariance
+// distance range (with a 20% margin) or seen more than 60 degrees off its mean viewing direction.
+bool PredictView(const StereoCamera& cam, const MapPoint& p, const Eigen::Isometry3d& T_c_w,
+                 const Eigen::Vector3d& center, const FrameFeatures& f, View* v) {
+  v->p_c = T_c_w * p.p_w;
+  if (v->p_c.z() <= 0) return false;
+  v->uv = cam.Project(v->p_c);
+  if (!cam.InImage(v->uv.x(), v->uv.y())) return false;
+  const Eigen::Vector3d ray = p.p_w - center;
+  const double dist = ray.norm();
+  if (dist < 0.8 * p.min_distance || dist > 1.2 * p.max_distance) return false;
+  if (ray.dot(p.normal) < 0.5 * dist) return false;
+  v->view_cos = ray.dot(p.normal) / dist;
+  v->level = p.PredictLevel(dist, f);
+  return true;
+}
+
 }  // namespace
 
 int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) const {
@@ -72,19 +97,14 @@ int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radi
   int matches = 0;
   for (MapPoint* p : points) {
     if (p->bad || already.count(p)) continue;
-    const Eigen::Vector3d pc = cur->T_c_w * p->p_w;
-    if (pc.z() <= 0) continue;
-    const Eigen::Vector2d uv = cam_.Project(pc);
-    if (!cam_.InImage(uv.x(), uv.y())) continue;
-    const Eigen::Vector3d ray = p->p_w - center;
-    const double dist = ray.norm();
-    if (dist < 0.8 * p->min_distance || dist > 1.2 * p->max_distance) continue;
-    if (ray.dot(p->normal) < 0.5 * dist) continue;  // viewing angle over 60 degrees
+    View v;
+    if (!PredictView(cam_, *p, cur->T_c_w, center, f, &v)) continue;
     ++p->visible;
-    const int level = p->PredictLevel(dist, f);
+    const Eigen::Vector3d& pc = v.p_c;
+    const Eigen::Vector2d& uv = v.uv;
+    const int level = v.level;
     // Wider windows when the view is oblique.
-    const double view_cos = ray.dot(p->normal) / dist;
-    const double r = radius * (view_cos > 0.998 ? 1.0 : 1.5) * f.level_scale[level];
+    const double r = radius * (v.view_cos > 0.998 ? 1.0 : 1.5) * f.level_scale[level];
     const auto cand = f.InArea(uv.x(), uv.y(), r, level - 1, level);
     Best b;
     const double ur = cam_.ProjectRight(pc);
@@ -197,15 +217,11 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
   int fused = 0;
   for (MapPoint* p : points) {
     if (!p || p->bad || p->observations.count(kf)) continue;
-    const Eigen::Vector3d pc = kf->T_c_w * p->p_w;
-    if (pc.z() <= 0) continue;
-    const Eigen::Vector2d uv = cam_.Project(pc);
-    if (!cam_.InImage(uv.x(), uv.y())) continue;
-    const Eigen::Vector3d ray = p->p_w - center;
-    const double dist = ray.norm();
-    if (dist < 0.8 * p->min_distance || dist > 1.2 * p->max_distance) continue;
-    if (ray.dot(p->normal) < 0.5 * dist) continue;
-    const int level = p->PredictLevel(dist, f);
+    View v;
+    if (!PredictView(cam_, *p, kf->T_c_w, center, f, &v)) continue;
+    const Eigen::Vector3d& pc = v.p_c;
+    const Eigen::Vector2d& uv = v.uv;
+    const int level = v.level;
     const double r = radius * f.level_scale[level];
     Best b;
     for (int j : f.InArea(uv.x(), uv.y(), r, level - 1, level)) {
