@@ -19,12 +19,16 @@ const char* const kRunUsage =
     "    --record-tum     also write a TUM RGB-D dataset of the left camera under DIR/dataset_tum\n"
     "    --video          also write DIR/video.mp4\n";
 const char* const kSlamUsage =
-    "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR]\n"
+    "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR] [--masks DIR]\n"
+    "          [--set key.path=value ...]\n"
     "    replay a recorded run folder or a public dataset through SLAM\n"
     "    --format F       viqu (a run folder written with --record; default), euroc (EuRoC MAV,\n"
     "                     rectified on reading), tum (TUM RGB-D; tracks in rgbd mode)\n"
     "    --config FILE    SLAM settings (default slam/config/default.yaml)\n"
-    "    --out DIR        output folder (default runs/slam-<dataset folder name>)\n";
+    "    --out DIR        output folder (default runs/slam-<dataset folder name>)\n"
+    "    --masks DIR      per-frame 16-bit instance PNGs named like the images, plus\n"
+    "                     DIR/instances.csv (id,category,name); see docs/MASKS.md\n"
+    "    --set K=V        override a SLAM settings key (repeatable), e.g. --set tracking.min_inliers=40\n";
 const char* const kEvalUsage =
     "viqu eval EST.txt GT.txt [--json] [--sim3] [--delta N | --delta-m D]\n"
     "    ATE/RPE of two TUM-format trajectories (SE(3) alignment unless --sim3;\n"
@@ -150,6 +154,11 @@ SlamArgs ParseSlam(ArgCursor* c) {
       a.config = c->TakeValue(arg);
     } else if (arg == "--out") {
       a.out_dir = c->TakeValue(arg);
+    } else if (arg == "--masks") {
+      a.masks_dir = c->TakeValue(arg);
+    } else if (arg == "--set") {
+      a.sets.push_back(c->TakeValue(arg));
+      CheckSet("slam", a.sets.back());
     } else {
       UnknownOption("slam", arg);
     }

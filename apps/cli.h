@@ -13,12 +13,15 @@ struct RunArgs {
   RunOptions options;             // out_dir empty when --out was not given
 };
 
-// `viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR]`
+// `viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR] [--masks DIR]
+//  [--set key.path=value ...]`
 struct SlamArgs {
   std::string dataset_dir;        // recorded run folder or public dataset
   std::string format = "viqu";    // viqu | euroc | tum
   std::string config;             // SLAM settings file; empty = slam/config/default.yaml
   std::string out_dir;            // empty when --out was not given
+  std::string masks_dir;          // instance masks (docs/MASKS.md); empty when --masks was not given
+  std::vector<std::string> sets;  // "key.path=value" SLAM settings overrides, in command-line order
 };
 
 // `viqu eval EST.txt GT.txt [--json]`

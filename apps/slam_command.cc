@@ -48,9 +48,10 @@ double PathLength(const eval::Trajectory& gt) {
 int RunSlamCommand(const SlamArgs& args) {
   const auto wall_start = std::chrono::steady_clock::now();
   const io::DatasetFormat format = io::ParseDatasetFormat(args.format);
-  std::unique_ptr<io::DatasetReader> reader = io::OpenDataset(args.dataset_dir, format);
+  // Settings first: a mistyped --set is reported before the dataset is scanned.
   slam::SlamSettings settings =
-      slam::LoadSlamSettings(args.config.empty() ? slam::DefaultSlamSettingsPath() : args.config);
+      slam::LoadSlamSettings(args.config.empty() ? slam::DefaultSlamSettingsPath() : args.config, args.sets);
+  std::unique_ptr<io::DatasetReader> reader = io::OpenDataset(args.dataset_dir, format, args.masks_dir);
   if (format == io::DatasetFormat::kTum && settings.input != "rgbd") {
     std::fprintf(stderr, "viqu: note: TUM RGB-D has no right image; tracking in rgbd mode\n");
     settings.input = "rgbd";
@@ -93,6 +94,7 @@ int RunSlamCommand(const SlamArgs& args) {
   JsonWriter json;
   json.Set("dataset", args.dataset_dir);
   json.Set("format", io::DatasetFormatName(format));
+  if (!args.masks_dir.empty()) json.Set("masks", args.masks_dir);
   json.Set("sim_time_s", (last_t - first_t) * 1e-9);
   const double path = PathLength(gt);
   if (!gt.empty()) {

@@ -3,9 +3,11 @@
 
 namespace viqu::app {
 
-// `viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR]`: replays a
-// dataset through SLAM and writes OUT/trajectory_est.txt, OUT/trajectory_gt.txt (when the dataset
-// has ground truth), OUT/slam_settings.yaml and OUT/metrics.json. Returns the exit code.
+// `viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR] [--masks DIR]
+// [--set key.path=value ...]`: replays a dataset (with the instance masks of DIR when given)
+// through SLAM with the settings file plus the overrides, and writes OUT/trajectory_est.txt,
+// OUT/trajectory_gt.txt (when the dataset has ground truth), OUT/slam_settings.yaml (resolved)
+// and OUT/metrics.json. Returns the exit code.
 int RunSlamCommand(const SlamArgs& args);
 
 }  // namespace viqu::app

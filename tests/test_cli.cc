@@ -8,6 +8,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "apps/cli.h"
 #include "apps/usage_error.h"
@@ -63,6 +65,13 @@ TEST(Cli, OtherSubcommandsParseTheirOptions) {
   EXPECT_EQ(s.slam.config, "c.yaml");
   EXPECT_EQ(s.slam.out_dir, "o");
   EXPECT_EQ(Parse({"slam", "d"}).slam.format, "viqu");
+  EXPECT_TRUE(Parse({"slam", "d"}).slam.masks_dir.empty());
+  EXPECT_TRUE(Parse({"slam", "d"}).slam.sets.empty());
+  const CliArgs m = Parse({"slam", "d", "--format=tum", "--masks", "yolo_masks", "--set", "tracking.min_inliers=40",
+                           "--set=mapping.mode=realtime"});
+  EXPECT_EQ(m.slam.format, "tum");
+  EXPECT_EQ(m.slam.masks_dir, "yolo_masks");
+  EXPECT_EQ(m.slam.sets, (std::vector<std::string>{"tracking.min_inliers=40", "mapping.mode=realtime"}));
 
   const CliArgs e = Parse({"eval", "est.txt", "gt.txt", "--json"});
   ASSERT_EQ(e.command, Command::kEval);
@@ -91,6 +100,8 @@ TEST(Cli, Help) {
   EXPECT_NE(UsageText().find("viqu run SCENARIO.yaml"), std::string::npos);
   EXPECT_NE(UsageText().find("viqu sweep SWEEP.yaml [--jobs N]"), std::string::npos);
   EXPECT_NE(UsageText("run").find("--no-slam"), std::string::npos);
+  EXPECT_NE(UsageText("slam").find("--masks DIR"), std::string::npos);
+  EXPECT_NE(UsageText("slam").find("--set K=V"), std::string::npos);
 }
 
 TEST(Cli, UsageErrors) {
@@ -104,6 +115,9 @@ TEST(Cli, UsageErrors) {
   EXPECT_EQ(UsageErrorOf({"run", "a.yaml", "--set", "duty"}), "run: --set expects key.path=value, got 'duty'");
   EXPECT_EQ(UsageErrorOf({"slam", "d", "--format", "kitti"}),
             "slam: --format expects viqu, euroc or tum, got 'kitti'");
+  EXPECT_EQ(UsageErrorOf({"slam", "d", "--set", "tracking.min_inliers"}),
+            "slam: --set expects key.path=value, got 'tracking.min_inliers'");
+  EXPECT_EQ(UsageErrorOf({"slam", "d", "--masks"}), "slam: option --masks needs a value");
   EXPECT_EQ(UsageErrorOf({"eval", "est.txt"}), "eval: missing GT.txt");
   EXPECT_EQ(UsageErrorOf({"sweep", "s.yaml", "--jobs", "0"}),
             "sweep: --jobs expects a whole number from 1 to 1024, got '0'");
@@ -151,6 +165,73 @@ TEST(CliProgram, ExitCodesAndMessages) {
   const ProgramResult later = RunViqu("sweep s.yaml --jobs 2");
   EXPECT_EQ(later.exit_code, 2);
   EXPECT_EQ(later.output, "viqu: 'sweep' is not implemented yet\n");
+}
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A TUM RGB-D sequence of three 64x48 frames of noise at 2 m, with its camera.yaml.
+void WriteTinyTum(const std::string& dir) {
+  std::filesystem::create_directories(dir + "/rgb");
+  std::filesystem::create_directories(dir + "/depth");
+  std::string rgb_txt, depth_txt;
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = "1.0" + std::to_string(i) + "0000.png";  // 1.000000, 1.010000, 1.020000
+    cv::Mat rgb(48, 64, CV_8UC3);
+    cv::RNG(i + 1).fill(rgb, cv::RNG::UNIFORM, 0, 256);
+    cv::imwrite(dir + "/rgb/" + name, rgb);
+    cv::imwrite(dir + "/depth/" + name, cv::Mat(48, 64, CV_16U, cv::Scalar(10000)));
+    rgb_txt += name.substr(0, 8) + " rgb/" + name + "\n";
+    depth_txt += name.substr(0, 8) + " depth/" + name + "\n";
+  }
+  std::ofstream(dir + "/rgb.txt") << rgb_txt;
+  std::ofstream(dir + "/depth.txt") << depth_txt;
+  std::ofstream(dir + "/camera.yaml") << "fx: 50\nfy: 50\ncx: 31.5\ncy: 23.5\nwidth: 64\nheight: 48\n";
+}
+
+TEST(CliProgram, SlamTakesSettingsOverridesAndMasks) {
+  if (!std::filesystem::exists(std::string(VIQU_BINARY_DIR) + "/apps/viqu")) {
+    GTEST_SKIP() << "the viqu program is not built";
+  }
+  // An unknown or ill-typed key is bad input, reported before the dataset is looked at.
+  const ProgramResult unknown = RunViqu("slam /nonexistent --set tracking.no_such_key=1");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_EQ(unknown.output.rfind("viqu: --set tracking.no_such_key=1: unknown key 'tracking.no_such_key'", 0), 0u)
+      << unknown.output;
+  const ProgramResult ill_typed = RunViqu("slam /nonexistent --set tracking.min_inliers=many");
+  EXPECT_EQ(ill_typed.exit_code, 2);
+  EXPECT_NE(ill_typed.output.find("'tracking.min_inliers' expected an integer"), std::string::npos) << ill_typed.output;
+  // A valid key passes on to the dataset.
+  const ProgramResult valid = RunViqu("slam /nonexistent --set tracking.min_inliers=40");
+  EXPECT_EQ(valid.exit_code, 2);
+  EXPECT_EQ(valid.output, "viqu: /nonexistent: dataset folder not found\n");
+
+  const std::string dir = ::testing::TempDir() + "viqu_cli_slam";
+  std::filesystem::remove_all(dir);
+  WriteTinyTum(dir + "/tum");
+  std::filesystem::create_directories(dir + "/masks");
+  std::ofstream(dir + "/masks/instances.csv") << "#id,category,name\n3,person,alice\n";
+  cv::Mat mask(48, 64, CV_16U, cv::Scalar(0));
+  mask(cv::Rect(10, 10, 8, 8)).setTo(3);
+  cv::imwrite(dir + "/masks/1.000000.png", mask);
+  const std::string common = "slam " + dir + "/tum --format tum --masks " + dir + "/masks --out " + dir + "/out";
+  const ProgramResult ok = RunViqu(common + " --set tracking.min_inliers=40 --set tracking.max_hamming=80");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  const std::string settings = ReadAll(dir + "/out/slam_settings.yaml");
+  EXPECT_NE(settings.find("min_inliers: 40\n"), std::string::npos) << settings;
+  EXPECT_NE(settings.find("max_hamming: 80\n"), std::string::npos) << settings;
+  EXPECT_NE(ReadAll(dir + "/out/metrics.json").find("\"masks\": \"" + dir + "/masks\""), std::string::npos);
+
+  // A bad mask is bad input naming the file.
+  cv::imwrite(dir + "/masks/1.010000.png", cv::Mat(48, 65, CV_16U, cv::Scalar(0)));
+  const ProgramResult bad = RunViqu(common);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("viqu: " + dir + "/masks/1.010000.png: mask is 65x48, its image is 64x48"),
+            std::string::npos)
+      << bad.output;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

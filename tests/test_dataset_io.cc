@@ -1,12 +1,14 @@
 // Dataset input/output for offline SLAM: the viqu recording (sim::EurocRecorder) and TUM RGB-D
 // (sim::TumRecorder) read back exactly, EuRoC MAV rectification checked on known 3D points, and
-// bad input reported as InputError naming the file (a single corrupt image skipped).
+// bad input reported as InputError naming the file (a single corrupt image skipped); instance
+// masks of an external detector (--masks) through each reader.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -474,13 +476,19 @@ std::string SensorYaml(const RawCamera& c) {
   return s;
 }
 
-// Grey image with a Gaussian blob (sigma 1.5 px) at the distorted projection of every point.
-cv::Mat RenderBlobs(const RawCamera& c, const std::vector<Eigen::Vector3d>& points_c) {
+// Pixel positions of points (camera frame, m) in the raw (distorted) image of camera `c`.
+std::vector<cv::Point2d> DistortedProjections(const RawCamera& c, const std::vector<Eigen::Vector3d>& points_c) {
   std::vector<cv::Point3d> obj;
   for (const Eigen::Vector3d& p : points_c) obj.emplace_back(p.x(), p.y(), p.z());
   const cv::Matx33d K(c.k.fx, 0, c.k.cx, 0, c.k.fy, c.k.cy, 0, 0, 1);
   std::vector<cv::Point2d> px;
   cv::projectPoints(obj, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, c.d, px);
+  return px;
+}
+
+// Grey image with a Gaussian blob (sigma 1.5 px) at the distorted projection of every point.
+cv::Mat RenderBlobs(const RawCamera& c, const std::vector<Eigen::Vector3d>& points_c) {
+  const std::vector<cv::Point2d> px = DistortedProjections(c, points_c);
   cv::Mat img(c.k.height, c.k.width, CV_32F, cv::Scalar(0));
   const double sigma = 1.5;
   for (const cv::Point2d& q : px) {
@@ -637,6 +645,180 @@ TEST(EurocDatasetReader, RectifiesToRowAlignedImagesWithTheTrueBaselineAndCamera
     }
   }
   EXPECT_FALSE(reader->Next(&f));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Instance masks of an external detector (--masks, docs/MASKS.md) through the three readers
+
+void WriteMask(const fs::path& path, const cv::Mat& ids) {
+  fs::create_directories(path.parent_path());
+  ASSERT_TRUE(cv::imwrite(path.string(), ids)) << path;
+}
+
+// The distinct values of a CV_16U image.
+std::set<uint16_t> IdsIn(const cv::Mat& ids) {
+  std::set<uint16_t> out;
+  for (int v = 0; v < ids.rows; ++v) {
+    for (int u = 0; u < ids.cols; ++u) out.insert(ids.at<uint16_t>(v, u));
+  }
+  return out;
+}
+
+// Mean pixel position of the pixels holding `id`.
+cv::Point2d CentroidOf(const cv::Mat& ids, uint16_t id) {
+  double su = 0, sv = 0, n = 0;
+  for (int v = 0; v < ids.rows; ++v) {
+    for (int u = 0; u < ids.cols; ++u) {
+      if (ids.at<uint16_t>(v, u) != id) continue;
+      su += u;
+      sv += v;
+      n += 1;
+    }
+  }
+  return {su / n, sv / n};
+}
+
+TEST(DatasetMasks, EurocMasksGoThroughTheLeftRectificationByNearestNeighbour) {
+  TempDir tmp;
+  const SyntheticEuroc s = WriteEuroc(tmp.path() / "MH_synthetic", 2);
+  // A disc of radius 6 px around every blob of frame 0 in the raw cam0 image, each its own id;
+  // frame 1 has no mask file.
+  const fs::path masks = tmp.path() / "masks";
+  std::string csv = "#id,category,name\n";
+  std::vector<uint16_t> ids;
+  cv::Mat raw_ids(s.cam0.k.height, s.cam0.k.width, CV_16U, cv::Scalar(0));
+  const std::vector<cv::Point2d> centres = DistortedProjections(s.cam0, s.points_cam0);
+  for (size_t k = 0; k < centres.size(); ++k) {
+    ids.push_back(static_cast<uint16_t>(5000 * (k + 1)));
+    csv += std::to_string(ids[k]) + "," + (k % 2 ? "box" : "person") + ",object_" + std::to_string(k) + "\n";
+    for (int v = 0; v < raw_ids.rows; ++v) {
+      for (int u = 0; u < raw_ids.cols; ++u) {
+        if (std::hypot(u - centres[k].x, v - centres[k].y) <= 6.0) raw_ids.at<uint16_t>(v, u) = ids[k];
+      }
+    }
+  }
+  csv += "50001,ball,never_in_view\n";
+  WriteText(masks / "instances.csv", csv);
+  WriteMask(masks / (std::to_string(s.stamps[0]) + ".png"), raw_ids);
+
+  const std::unique_ptr<DatasetReader> reader =
+      OpenDataset((tmp.path() / "MH_synthetic").string(), DatasetFormat::kEuroc, masks.string());
+  EXPECT_TRUE(reader->HasSegmentation());
+  const PinholeIntrinsics& k = reader->intrinsics();
+  StereoFrame f;
+  ASSERT_TRUE(reader->Next(&f));
+  ASSERT_EQ(f.left_instance_id.type(), CV_16U);
+  ASSERT_EQ(f.left_instance_id.size(), f.left_rgb.size());
+  // Nearest neighbour: every value is one of the input's (linear interpolation between 5000
+  // and 0 or 10000 would give others), and every disc survives.
+  std::set<uint16_t> want_ids(ids.begin(), ids.end());
+  want_ids.insert(0);
+  EXPECT_EQ(IdsIn(f.left_instance_id), want_ids);
+  // Each disc lands where its blob lands in the rectified left image, within pixel sampling
+  // (a third of a pixel here; the fixed-point maps of the images are off by up to 0.46 px).
+  const Eigen::Isometry3d T_w_cam0 = s.T_w_imu[0] * s.T_B_imu.inverse() * s.cam0.T_B_C;
+  const Eigen::Isometry3d T_w_rect0 = ToIsometry((*reader->ground_truth())[0]);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const Eigen::Vector3d p = T_w_rect0.inverse() * (T_w_cam0 * s.points_cam0[i]);
+    const cv::Point2d want(k.fx * p.x() / p.z() + k.cx, k.fy * p.y() / p.z() + k.cy);
+    const cv::Point2d got = CentroidOf(f.left_instance_id, ids[i]);
+    EXPECT_LT(cv::norm(got - want), 0.35) << "id " << ids[i] << ": " << got << " want " << want;
+  }
+  // instances: the rows of instances.csv whose ids are in view, in order of id.
+  ASSERT_EQ(f.instances.size(), ids.size());
+  for (size_t i = 0; i < ids.size(); ++i) {
+    EXPECT_EQ(f.instances[i].id, ids[i]);
+    EXPECT_EQ(f.instances[i].category, i % 2 ? Category::kBox : Category::kPerson);
+    EXPECT_EQ(f.instances[i].name, "object_" + std::to_string(i));
+  }
+  // No mask file: no detections.
+  ASSERT_TRUE(reader->Next(&f));
+  ASSERT_EQ(f.left_instance_id.type(), CV_16U);
+  ASSERT_EQ(f.left_instance_id.size(), f.left_rgb.size());
+  EXPECT_EQ(cv::countNonZero(f.left_instance_id), 0);
+  EXPECT_TRUE(f.instances.empty());
+  // Without --masks nothing changes.
+  EurocDatasetReader plain((tmp.path() / "MH_synthetic").string());
+  EXPECT_FALSE(plain.HasSegmentation());
+  ASSERT_TRUE(plain.Next(&f));
+  EXPECT_TRUE(f.left_instance_id.empty());
+  EXPECT_TRUE(f.instances.empty());
+}
+
+TEST(DatasetMasks, TumMasksAreNamedLikeTheRgbImagesAndUndistortedWithThem) {
+  TempDir tmp;
+  const fs::path masks = tmp.path() / "masks";
+  WriteText(masks / "instances.csv", "#id,category,name\n5,person,alice\n9,furniture,chair\n");
+  // freiburg3 (no distortion): the mask comes back exactly.
+  const fs::path fr3 = tmp.path() / "some_sequence";
+  WriteTumSequence(fr3, {1.0, 1.1}, {1.001, 1.101});
+  cv::Mat ids(480, 640, CV_16U, cv::Scalar(0));
+  ids(cv::Rect(100, 50, 80, 200)).setTo(9);
+  WriteMask(masks / "1.000000.png", ids);
+  TumDatasetReader reader(fr3.string(), masks.string());
+  EXPECT_TRUE(reader.HasSegmentation());
+  StereoFrame f;
+  ASSERT_TRUE(reader.Next(&f));
+  EXPECT_EQ(MaxAbsDiff(f.left_instance_id, ids), 0.0);
+  ASSERT_EQ(f.instances.size(), 1u);
+  EXPECT_EQ(f.instances[0].id, 9);
+  EXPECT_EQ(f.instances[0].category, Category::kFurniture);
+  EXPECT_EQ(f.instances[0].name, "chair");
+  ASSERT_TRUE(reader.Next(&f));  // rgb/1.100000.png has no mask
+  EXPECT_EQ(f.left_instance_id.size(), cv::Size(640, 480));
+  EXPECT_EQ(cv::countNonZero(f.left_instance_id), 0);
+  EXPECT_TRUE(f.instances.empty());
+
+  // freiburg1 (distorted): the mask is undistorted with the image, never blending 5 and 9.
+  const fs::path fr1 = tmp.path() / "rgbd_dataset_freiburg1_xyz";
+  WriteTumSequence(fr1, {1.0}, {1.001});
+  ids.setTo(5);
+  ids.colRange(320, 640).setTo(9);
+  WriteMask(masks / "1.000000.png", ids);
+  TumDatasetReader distorted(fr1.string(), masks.string());
+  ASSERT_TRUE(distorted.Next(&f));
+  const std::set<uint16_t> seen = IdsIn(f.left_instance_id);
+  EXPECT_TRUE(seen.count(5) && seen.count(9));
+  for (uint16_t id : seen) EXPECT_TRUE(id == 0 || id == 5 || id == 9) << id;
+  EXPECT_EQ(f.left_instance_id.at<uint16_t>(240, 300), 5);
+  EXPECT_EQ(f.left_instance_id.at<uint16_t>(240, 340), 9);
+
+  // An id that instances.csv does not list: InputError naming the mask.
+  ids.at<uint16_t>(10, 10) = 6;
+  WriteMask(masks / "1.000000.png", ids);
+  TumDatasetReader unknown(fr1.string(), masks.string());
+  ExpectInputError([&] { unknown.Next(&f); }, {(masks / "1.000000.png").string(), "instance id 6"});
+}
+
+TEST(DatasetMasks, MasksReplaceTheSeg0OfAViquRecording) {
+  TempDir tmp;
+  const ViquRecording rec = RecordViqu(tmp.path() / "run", 3);
+  const fs::path masks = tmp.path() / "masks";
+  WriteText(masks / "instances.csv", "id,category,name\n42,ball,red_ball\n");
+  cv::Mat ids(kH, kW, CV_16U, cv::Scalar(0));
+  ids(cv::Rect(10, 5, 4, 4)).setTo(42);
+  const auto mask_of = [&](int i) { return masks / (std::to_string(rec.frames[i].t_ns) + ".png"); };
+  WriteMask(mask_of(0), ids);
+  const std::unique_ptr<DatasetReader> reader =
+      OpenDataset((tmp.path() / "run").string(), DatasetFormat::kViqu, masks.string());
+  EXPECT_TRUE(reader->HasSegmentation());
+  StereoFrame f;
+  ASSERT_TRUE(reader->Next(&f));
+  EXPECT_EQ(MaxAbsDiff(f.left_instance_id, ids), 0.0);
+  ASSERT_EQ(f.instances.size(), 1u);
+  EXPECT_EQ(f.instances[0].id, 42);
+  EXPECT_EQ(f.instances[0].name, "red_ball");
+  // Frame 1 has seg0 (a person and a box) but no mask: no detections.
+  ASSERT_TRUE(reader->Next(&f));
+  EXPECT_EQ(cv::countNonZero(f.left_instance_id), 0);
+  EXPECT_TRUE(f.instances.empty());
+  // A mask of the wrong size: InputError naming it.
+  WriteMask(mask_of(2), cv::Mat(kH + 1, kW, CV_16U, cv::Scalar(0)));
+  ExpectInputError([&] { reader->Next(&f); }, {mask_of(2).string(), "mask is 32x25", "image is 32x24"});
+  // A masks folder without instances.csv is refused when the dataset is opened.
+  fs::remove(masks / "instances.csv");
+  ExpectInputError([&] { OpenDataset((tmp.path() / "run").string(), DatasetFormat::kViqu, masks.string()); },
+                   {(masks / "instances.csv").string(), "not found"});
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -8,18 +8,20 @@
 #include "slam/io/euroc_layout.h"
 #include "slam/io/image_files.h"
 #include "slam/io/pose_conversions.h"
+#include "slam/io/segment_instances.h"
 
 namespace viqu::io {
 
 namespace fs = std::filesystem;
 
-EurocDatasetReader::EurocDatasetReader(const std::string& dir) {
+EurocDatasetReader::EurocDatasetReader(const std::string& dir, const std::string& masks_dir) {
   const EurocStereoLayout layout = ReadEurocStereoLayout(FindMav0(dir));
   frames_ = layout.frames;
   raw_ = layout.cam0.calibration.pinhole;
   const Eigen::Isometry3d T_cam0_cam1 = layout.cam0.T_B_S.inverse() * layout.cam1.T_B_S;
   rectifier_ = std::make_unique<StereoRectifier>(layout.cam0.calibration, layout.cam1.calibration, T_cam0_cam1,
                                                  (fs::path(layout.mav0) / "cam1" / "sensor.yaml").string());
+  if (!masks_dir.empty()) masks_.emplace(masks_dir);
 
   std::error_code ec;
   const fs::path gt_csv = fs::path(layout.mav0) / "state_groundtruth_estimate0" / "data.csv";
@@ -62,6 +64,11 @@ bool EurocDatasetReader::Next(StereoFrame* frame) {
     frame->right_rgb = ToRgb(rect1);
     frame->intrinsics = rectifier_->intrinsics();
     frame->baseline_m = rectifier_->baseline_m();
+    if (masks_) {
+      const cv::Mat raw_ids = masks_->Read(files.a, cv::Size(raw_.width, raw_.height));
+      frame->left_instance_id = rectifier_->RectifyLeftLabels(raw_ids);
+      frame->instances = InstancesPresent(frame->left_instance_id, masks_->instances());
+    }
     skip_.Good();
     return true;
   }

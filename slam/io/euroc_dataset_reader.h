@@ -7,6 +7,7 @@
 #include "slam/io/dataset_reader.h"
 #include "slam/io/frame_skip_policy.h"
 #include "slam/io/image_list.h"
+#include "slam/io/instance_mask_folder.h"
 #include "slam/io/stereo_rectifier.h"
 
 namespace viqu::io {
@@ -20,17 +21,22 @@ namespace viqu::io {
 // composed with the camera extrinsics and the rectifying rotation,
 //   T_w_rect0 = T_w_imu * T_B_imu^-1 * T_B_cam0 * R1^T,
 // with T_B_imu from imu0/sensor.yaml (identity when absent; EuRoC's body frame is the IMU).
+//
+// With a masks folder (InstanceMaskFolder, docs/MASKS.md) frames carry left_instance_id and
+// instances: the mask named like the cam0 image, in the raw cam0 geometry, goes through the
+// left image's rectification by nearest neighbour.
 class EurocDatasetReader : public DatasetReader {
  public:
-  // `dir`: the folder that holds mav0/, or mav0 itself. Bad input: InputError naming the file.
-  explicit EurocDatasetReader(const std::string& dir);
+  // `dir`: the folder that holds mav0/, or mav0 itself; `masks_dir`: instance masks, "" for
+  // none. Bad input: InputError naming the file.
+  explicit EurocDatasetReader(const std::string& dir, const std::string& masks_dir = "");
 
   bool Next(StereoFrame* frame) override;
   size_t NumFrames() const override { return frames_.size(); }
   const PinholeIntrinsics& intrinsics() const override { return rectifier_->intrinsics(); }
   double baseline_m() const override { return rectifier_->baseline_m(); }
   bool HasDepth() const override { return false; }
-  bool HasSegmentation() const override { return false; }
+  bool HasSegmentation() const override { return masks_.has_value(); }
   const std::optional<std::vector<StampedPose>>& ground_truth() const override { return ground_truth_; }
 
  private:
@@ -38,6 +44,7 @@ class EurocDatasetReader : public DatasetReader {
   size_t next_ = 0;                             // index of the next frame
   PinholeIntrinsics raw_;                       // calibrated (raw) image size, for checks
   std::unique_ptr<StereoRectifier> rectifier_;
+  std::optional<InstanceMaskFolder> masks_;     // --masks
   std::optional<std::vector<StampedPose>> ground_truth_;  // rectified left camera in world
   FrameSkipPolicy skip_;
 };

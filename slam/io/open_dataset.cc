@@ -23,11 +23,12 @@ const char* DatasetFormatName(DatasetFormat format) {
   return "unknown";
 }
 
-std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format) {
+std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format,
+                                           const std::string& masks_dir) {
   switch (format) {
-    case DatasetFormat::kViqu: return std::make_unique<ViquDatasetReader>(dir);
-    case DatasetFormat::kEuroc: return std::make_unique<EurocDatasetReader>(dir);
-    case DatasetFormat::kTum: return std::make_unique<TumDatasetReader>(dir);
+    case DatasetFormat::kViqu: return std::make_unique<ViquDatasetReader>(dir, masks_dir);
+    case DatasetFormat::kEuroc: return std::make_unique<EurocDatasetReader>(dir, masks_dir);
+    case DatasetFormat::kTum: return std::make_unique<TumDatasetReader>(dir, masks_dir);
   }
   throw InputError("unknown dataset format");
 }

@@ -16,7 +16,10 @@ enum class DatasetFormat {
 DatasetFormat ParseDatasetFormat(const std::string& name);
 const char* DatasetFormatName(DatasetFormat format);
 
-// Opens the dataset in `dir`. Missing or malformed input: InputError naming the file.
-std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format);
+// Opens the dataset in `dir`; with `masks_dir` (not "") its frames carry the instance masks of
+// that folder (InstanceMaskFolder, docs/MASKS.md), which replace a viqu recording's seg0.
+// Missing or malformed input: InputError naming the file.
+std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format,
+                                           const std::string& masks_dir = "");
 
 }  // namespace viqu::io

@@ -25,7 +25,11 @@ std::vector<SegmentInstance> ReadSegmentInstances(const std::string& csv_path) {
   TextTableReader table(csv_path, ',');
   std::vector<SegmentInstance> out;
   std::vector<std::string> f;
+  bool first_row = true;
   while (table.Next(&f)) {
+    const bool header = first_row && f.size() == 3 && f[0] == "id" && f[1] == "category" && f[2] == "name";
+    first_row = false;
+    if (header) continue;  // a header row without '#', as CSV writers emit it
     if (f.size() < 3) table.Fail("expected 'id,category,name'");
     int64_t id = 0;
     if (!ParseInt64(f[0], &id) || id < 0 || id > 65535) table.Fail("id '" + f[0] + "' is not an integer in [0, 65535]");

@@ -8,7 +8,9 @@
 
 namespace viqu::io {
 
-// Reads seg0/instances.csv of a viqu recording: "id,category,name" (the name may hold commas).
+// Reads seg0/instances.csv of a viqu recording, or the instances.csv of a masks folder:
+// "id,category,name" (the name may hold commas); '#' comment lines and a first row that is
+// exactly "id,category,name" (a header) are skipped.
 // Malformed row, unknown category, repeated id: InputError "CSV:LINE: ...".
 std::vector<SegmentInstance> ReadSegmentInstances(const std::string& csv_path);
 

@@ -62,11 +62,18 @@ StereoRectifier::StereoRectifier(const CameraCalibration& cam0, const CameraCali
   T_cam0_rect0_.linear() = R_rect0_cam0.transpose();
   cv::initUndistortRectifyMap(K0, D0, R1, P1, size, CV_16SC2, map0_a_, map0_b_);
   cv::initUndistortRectifyMap(K1, D1, R2, P2, size, CV_16SC2, map1_a_, map1_b_);
+  cv::initUndistortRectifyMap(K0, D0, R1, P1, size, CV_32FC1, map0_x_, map0_y_);
 }
 
 void StereoRectifier::Rectify(const cv::Mat& raw0, const cv::Mat& raw1, cv::Mat* rect0, cv::Mat* rect1) const {
   cv::remap(raw0, *rect0, map0_a_, map0_b_, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
   cv::remap(raw1, *rect1, map1_a_, map1_b_, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+}
+
+cv::Mat StereoRectifier::RectifyLeftLabels(const cv::Mat& raw0) const {
+  cv::Mat rect0;
+  cv::remap(raw0, rect0, map0_x_, map0_y_, cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
+  return rect0;
 }
 
 }  // namespace viqu::io

@@ -25,6 +25,9 @@ class StereoRectifier {
 
   // Raw images (any 8-bit type, the calibrated size) to rectified ones (same type).
   void Rectify(const cv::Mat& raw0, const cv::Mat& raw1, cv::Mat* rect0, cv::Mat* rect1) const;
+  // A raw left image of labels (e.g. CV_16U instance ids, the calibrated size) to the rectified
+  // left geometry by nearest neighbour (values are never blended; outside the raw image: 0).
+  cv::Mat RectifyLeftLabels(const cv::Mat& raw0) const;
 
   const PinholeIntrinsics& intrinsics() const { return intrinsics_; }  // of rect0 and rect1
   double baseline_m() const { return baseline_m_; }
@@ -36,6 +39,9 @@ class StereoRectifier {
   double baseline_m_ = 0;
   Eigen::Isometry3d T_cam0_rect0_ = Eigen::Isometry3d::Identity();
   cv::Mat map0_a_, map0_b_, map1_a_, map1_b_;  // cv::remap maps (CV_16SC2 + CV_16UC1)
+  // Left maps in floating point (CV_32FC1 x, y): nearest neighbour rounds to the nearest raw
+  // pixel with these, whereas the fixed-point maps would truncate.
+  cv::Mat map0_x_, map0_y_;
 };
 
 }  // namespace viqu::io

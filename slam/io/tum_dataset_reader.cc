@@ -6,12 +6,13 @@
 #include "common/errors.h"
 #include "slam/eval/trajectory.h"
 #include "slam/io/image_files.h"
+#include "slam/io/segment_instances.h"
 
 namespace viqu::io {
 
 namespace fs = std::filesystem;
 
-TumDatasetReader::TumDatasetReader(const std::string& dir) {
+TumDatasetReader::TumDatasetReader(const std::string& dir, const std::string& masks_dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir + ": dataset folder not found");
   const fs::path d(dir);
@@ -27,6 +28,7 @@ TumDatasetReader::TumDatasetReader(const std::string& dir) {
   if (frames_.empty()) {
     throw InputError(rgb_txt + ": no colour image has a depth image in " + depth_txt + " within 0.02 s");
   }
+  if (!masks_dir.empty()) masks_.emplace(masks_dir);
   const fs::path gt = d / "groundtruth.txt";
   if (fs::exists(gt, ec)) ground_truth_ = eval::ReadTumTrajectory(gt.string());
 }
@@ -54,6 +56,11 @@ bool TumDatasetReader::ReadFrame(const ImagePair& files, StereoFrame* frame, std
   frame->left_depth_m = DepthToMetres(depth, 1.0 / camera_.depth_scale);
   frame->intrinsics = k;
   frame->baseline_m = 0;
+  if (masks_) {
+    const cv::Mat raw_ids = masks_->Read(files.a, cv::Size(k.width, k.height));
+    frame->left_instance_id = undistorter_ ? undistorter_->Depth(raw_ids) : raw_ids;
+    frame->instances = InstancesPresent(frame->left_instance_id, masks_->instances());
+  }
   return true;
 }
 

@@ -8,6 +8,7 @@
 #include "slam/io/frame_skip_policy.h"
 #include "slam/io/image_list.h"
 #include "slam/io/image_undistorter.h"
+#include "slam/io/instance_mask_folder.h"
 #include "slam/io/tum_camera.h"
 
 namespace viqu::io {
@@ -22,17 +23,19 @@ constexpr double kTumMaxRgbDepthDiffS = 0.02;
 // TUM's associate.py does; colour images without depth are skipped with a warning. The camera
 // comes from ReadTumCamera; distorted sequences (freiburg1/2) are undistorted on reading.
 // Frames carry left_rgb and left_depth_m; right_rgb stays empty and baseline_m() is 0.
+// With a masks folder (InstanceMaskFolder, docs/MASKS.md) they also carry left_instance_id and
+// instances: the mask named like the rgb image, undistorted with it by nearest neighbour.
 class TumDatasetReader : public DatasetReader {
  public:
-  // Bad input: InputError naming the file.
-  explicit TumDatasetReader(const std::string& dir);
+  // `masks_dir`: instance masks, "" for none. Bad input: InputError naming the file.
+  explicit TumDatasetReader(const std::string& dir, const std::string& masks_dir = "");
 
   bool Next(StereoFrame* frame) override;
   size_t NumFrames() const override { return frames_.size(); }
   const PinholeIntrinsics& intrinsics() const override { return camera_.calibration.pinhole; }
   double baseline_m() const override { return 0; }
   bool HasDepth() const override { return true; }
-  bool HasSegmentation() const override { return false; }
+  bool HasSegmentation() const override { return masks_.has_value(); }
   const std::optional<std::vector<StampedPose>>& ground_truth() const override { return ground_truth_; }
 
   // Where the intrinsics came from (camera.yaml, or which TUM default).
@@ -44,11 +47,11 @@ class TumDatasetReader : public DatasetReader {
 
   TumCamera camera_;
   std::unique_ptr<ImageUndistorter> undistorter_;  // null when the images have no distortion
+  std::optional<InstanceMaskFolder> masks_;        // --masks
   std::vector<ImagePair> frames_;                  // rgb (a) / depth (b) image files
   size_t next_ = 0;                                // index of the next frame
   std::optional<std::vector<StampedPose>> ground_truth_;
   FrameSkipPolicy skip_;
 };
-
 
 }  // namespace viqu::io

@@ -43,7 +43,7 @@ double ReadDepthUnit(const fs::path& yaml) {
 
 }  // namespace
 
-ViquDatasetReader::ViquDatasetReader(const std::string& dir) {
+ViquDatasetReader::ViquDatasetReader(const std::string& dir, const std::string& masks_dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir + ": dataset folder not found");
   // A run folder holds dataset/mav0 and trajectory_gt.txt; a dataset folder holds mav0.
@@ -84,7 +84,10 @@ ViquDatasetReader::ViquDatasetReader(const std::string& dir) {
     depth_files_ = ImageMap(mav0 / "depth0");
     depth_unit_m_ = ReadDepthUnit(mav0 / "depth0" / "sensor.yaml");
   }
-  if (fs::is_directory(mav0 / "seg0", ec)) {
+  if (!masks_dir.empty()) {
+    masks_.emplace(masks_dir);
+    has_segmentation_ = true;
+  } else if (fs::is_directory(mav0 / "seg0", ec)) {
     has_segmentation_ = true;
     seg_files_ = ImageMap(mav0 / "seg0");
     const fs::path instances = mav0 / "seg0" / "instances.csv";
@@ -126,7 +129,10 @@ bool ViquDatasetReader::ReadFrame(const ImagePair& files, StereoFrame* frame, st
     if (depth.size() != size) throw InputError(it->second + ": depth image size differs from the camera's");
     frame->left_depth_m = DepthToMetres(depth, depth_unit_m_);
   }
-  if (const auto it = seg_files_.find(files.t_ns); it != seg_files_.end()) {
+  if (masks_) {
+    frame->left_instance_id = masks_->Read(files.a, size);
+    frame->instances = InstancesPresent(frame->left_instance_id, masks_->instances());
+  } else if (const auto it = seg_files_.find(files.t_ns); it != seg_files_.end()) {
     frame->left_instance_id = ReadImage16(it->second, why);
     if (frame->left_instance_id.empty()) return false;
     if (frame->left_instance_id.size() != size) {

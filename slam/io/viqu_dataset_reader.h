@@ -7,6 +7,7 @@
 #include "slam/io/dataset_reader.h"
 #include "slam/io/frame_skip_policy.h"
 #include "slam/io/image_list.h"
+#include "slam/io/instance_mask_folder.h"
 
 namespace viqu::io {
 
@@ -15,15 +16,17 @@ namespace viqu::io {
 // cam0/sensor.yaml, the baseline from the cam0/cam1 T_BS (a recording that is not a rectified
 // pair is rejected: read it with --format euroc). depth0 (16-bit, depth_unit_m from its
 // sensor.yaml, default 1 mm) and seg0 (16-bit instance ids, instances.csv) are read when
-// present; a frame lacks them when their data.csv has no row with its stamp.
+// present; a frame lacks them when their data.csv has no row with its stamp. A masks folder
+// (InstanceMaskFolder, docs/MASKS.md; masks named like the cam0 images) replaces seg0.
 //
 // Ground truth of the left camera: RUN/trajectory_gt.txt when the run folder was given and has
 // it; otherwise mav0/state_groundtruth_estimate0 (trunk pose T_w_body) composed with cam0's
 // T_BS: T_w_cam0 = T_w_body * T_body_cam0. Neither (or no rows): nullopt.
 class ViquDatasetReader : public DatasetReader {
  public:
-  // Bad input: InputError naming the file.
-  explicit ViquDatasetReader(const std::string& dir);
+  // `masks_dir`: instance masks that replace seg0, "" for none. Bad input: InputError naming
+  // the file.
+  explicit ViquDatasetReader(const std::string& dir, const std::string& masks_dir = "");
 
   bool Next(StereoFrame* frame) override;
   size_t NumFrames() const override { return frames_.size(); }
@@ -46,6 +49,7 @@ class ViquDatasetReader : public DatasetReader {
   std::map<int64_t, std::string> seg_files_;    // stamp (ns) -> seg0 image
   double depth_unit_m_ = 0.001;                 // depth0 PNG value -> metres
   std::vector<SegmentInstance> instances_;      // seg0/instances.csv
+  std::optional<InstanceMaskFolder> masks_;     // --masks (then seg0 is not read)
   std::optional<std::vector<StampedPose>> ground_truth_;  // left camera in world
   FrameSkipPolicy skip_;
 };
