@@ -70,10 +70,14 @@ struct JointsConfig {                // sensors.joints
   double resolution_rad = 0.0015;    // encoder quantisation step (rad); 0 = none (~12 bit)
 };
 
-struct SegmentationConfig {          // sensors.segmentation
+struct SegmentationConfig {          // sensors.segmentation (steps in sim/segmentation_model.h)
   double miss_rate = 0.05;           // probability that an instance is missing from a frame
   int dilate_px = 2;                 // mask dilation (px), imitates a detector's loose masks
   int latency_frames = 0;            // masks arrive this many camera frames late
+  int min_area_px = 150;             // instances with fewer visible pixels are not detected (px)
+  double false_positive_rate = 0;    // probability per frame of one spurious mask on the background
+  double wrong_category_rate = 0;    // probability per instance and frame of a wrong category
+  int boundary_jitter_px = 1;        // masks grow or shrink by up to this much per frame (px)
 };
 
 struct SensorsConfig {
@@ -114,8 +118,10 @@ struct TerrainConfig {
   std::vector<Slope> slopes;
 };
 
-struct DynamicConfig {               // slam.dynamic (paper eqs. 1-4)
-  std::string method = "adaptive";
+// slam.dynamic (paper eqs. 1-4). The same keys live in the SLAM settings (`dynamic.*`, units and
+// meaning in slam/config/default.yaml); keys given in the scenario override the settings file.
+struct DynamicConfig {
+  std::string method = "adaptive";   // none | semantic | paper | adaptive
   double alpha = 1.0, beta = 1.0, gamma = 0.5, th_d = 0.1;
   double window_s = 6;
   int window_n = 10;
@@ -125,6 +131,9 @@ struct SlamConfig {                  // slam
   std::string mode = "full";         // visual | visual_dynamic | full
   std::string config;                // settings file; empty = slam/config/default.yaml
   DynamicConfig dynamic;
+  // The `slam.mode` / `slam.dynamic.*` keys present in the scenario, as SLAM-settings overrides
+  // ("mode=full", "dynamic.alpha=1.5"), applied on top of the settings file in that order.
+  std::vector<std::string> settings_overrides;
 };
 
 struct Scenario {

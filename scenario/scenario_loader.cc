@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <set>
 
+#include "common/yaml_emit.h"
 #include "common/yaml_strict.h"
 
 namespace viqu {
@@ -15,7 +16,7 @@ const std::vector<std::string> kFollowModes = {"ground_truth", "estimate"};
 const std::vector<std::string> kCategories = {"person", "box", "ball", "furniture"};
 const std::vector<std::string> kLoopModes = {"none", "loop", "pingpong"};
 const std::vector<std::string> kSlamModes = {"visual", "visual_dynamic", "full"};
-const std::vector<std::string> kDynamicMethods = {"adaptive", "paper"};
+const std::vector<std::string> kDynamicMethods = {"none", "semantic", "paper", "adaptive"};
 
 // Names that end up in file and MuJoCo body names: letters, digits, '_', '-', '.'.
 bool IsSafeName(const std::string& s) {
@@ -162,6 +163,11 @@ void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
   seg.Number("miss_rate", &s->segmentation.miss_rate, NumberRange::Closed(0, 1));
   seg.Integer("dilate_px", &s->segmentation.dilate_px, NumberRange::Closed(0, 50));
   seg.Integer("latency_frames", &s->segmentation.latency_frames, NumberRange::Closed(0, 100));
+  // At most 100000 px, a third of a 640 x 480 image: beyond that nearly every object is dropped.
+  seg.Integer("min_area_px", &s->segmentation.min_area_px, NumberRange::Closed(0, 100000));
+  seg.Number("false_positive_rate", &s->segmentation.false_positive_rate, NumberRange::Closed(0, 1));
+  seg.Number("wrong_category_rate", &s->segmentation.wrong_category_rate, NumberRange::Closed(0, 1));
+  seg.Integer("boundary_jitter_px", &s->segmentation.boundary_jitter_px, NumberRange::Closed(0, 50));
   seg.RejectUnknownKeys();
   m.RejectUnknownKeys();
 }
@@ -235,16 +241,25 @@ void ReadTerrain(YamlMapReader m, TerrainConfig* t) {
 }
 
 void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
-  m.Choice("mode", &s->mode, kSlamModes);
+  if (m.Choice("mode", &s->mode, kSlamModes)) s->settings_overrides.push_back("mode=" + s->mode);
   ReadFilePath(&m, "config", base_dir, &s->config);
   YamlMapReader d = m.Map("dynamic");
-  d.Choice("method", &s->dynamic.method, kDynamicMethods);
-  d.Number("alpha", &s->dynamic.alpha, NumberRange::NonNegative());
-  d.Number("beta", &s->dynamic.beta, NumberRange::NonNegative());
-  d.Number("gamma", &s->dynamic.gamma, NumberRange::NonNegative());
-  d.Number("th_d", &s->dynamic.th_d, NumberRange::NonNegative());
-  d.Number("window_s", &s->dynamic.window_s, NumberRange::Positive());
-  d.Integer("window_n", &s->dynamic.window_n, NumberRange::Closed(2, 10000));
+  // Present keys become overrides of the SLAM settings' `dynamic.*` (the settings file holds the
+  // defaults for the rest).
+  auto number = [&](const char* key, double* v, const NumberRange& range) {
+    if (d.Number(key, v, range)) s->settings_overrides.push_back(std::string("dynamic.") + key + "=" + YamlNumberText(*v));
+  };
+  if (d.Choice("method", &s->dynamic.method, kDynamicMethods)) {
+    s->settings_overrides.push_back("dynamic.method=" + s->dynamic.method);
+  }
+  number("alpha", &s->dynamic.alpha, NumberRange::NonNegative());
+  number("beta", &s->dynamic.beta, NumberRange::NonNegative());
+  number("gamma", &s->dynamic.gamma, NumberRange::NonNegative());
+  number("th_d", &s->dynamic.th_d, NumberRange::NonNegative());
+  number("window_s", &s->dynamic.window_s, NumberRange::Positive());
+  if (d.Integer("window_n", &s->dynamic.window_n, NumberRange::Closed(2, 10000))) {
+    s->settings_overrides.push_back("dynamic.window_n=" + std::to_string(s->dynamic.window_n));
+  }
   d.RejectUnknownKeys();
   m.RejectUnknownKeys();
 }

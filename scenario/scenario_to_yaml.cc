@@ -85,6 +85,10 @@ void Sensors(YAML::Emitter& out, const SensorsConfig& s) {
   EmitNumber(out, "miss_rate", s.segmentation.miss_rate);
   EmitInt(out, "dilate_px", s.segmentation.dilate_px);
   EmitInt(out, "latency_frames", s.segmentation.latency_frames);
+  EmitInt(out, "min_area_px", s.segmentation.min_area_px);
+  EmitNumber(out, "false_positive_rate", s.segmentation.false_positive_rate);
+  EmitNumber(out, "wrong_category_rate", s.segmentation.wrong_category_rate);
+  EmitInt(out, "boundary_jitter_px", s.segmentation.boundary_jitter_px);
   out << YAML::EndMap;
   out << YAML::EndMap;
 }

@@ -74,6 +74,11 @@ TEST_F(ConfigLoaderTest, MinimalScenarioLoadsWithDefaults) {
   EXPECT_EQ(s.sensors.camera.width, 640);
   EXPECT_TRUE(s.sensors.camera.depth);
   EXPECT_DOUBLE_EQ(s.sensors.imu.rate_hz, d.sensors.imu.rate_hz);
+  // A good detector by default (sim/segmentation_model.h).
+  EXPECT_EQ(s.sensors.segmentation.min_area_px, 150);
+  EXPECT_EQ(s.sensors.segmentation.false_positive_rate, 0.0);
+  EXPECT_EQ(s.sensors.segmentation.wrong_category_rate, 0.0);
+  EXPECT_EQ(s.sensors.segmentation.boundary_jitter_px, 1);
   EXPECT_TRUE(s.obstacles.empty());
   EXPECT_TRUE(s.terrain.patches.empty());
   EXPECT_EQ(s.slam.mode, "full");
@@ -166,6 +171,20 @@ TEST_F(ConfigLoaderTest, OutOfRangeDuty) {
 TEST_F(ConfigLoaderTest, OutOfRangeNegativeRate) {
   const std::string msg = ErrorOf(std::string(kMinimal) + "sensors:\n  imu:\n    rate_hz: -200\n");
   EXPECT_EQ(msg, ScenPath() + ":7:14: key 'sensors.imu.rate_hz' expected a number in (0, 1000], got '-200'");
+}
+
+TEST_F(ConfigLoaderTest, OutOfRangeSegmentationKeys) {
+  const std::string head = std::string(kMinimal) + "sensors:\n  segmentation:\n";
+  EXPECT_EQ(ErrorOf(head + "    false_positive_rate: 1.5\n"),
+            ScenPath() + ":7:26: key 'sensors.segmentation.false_positive_rate' expected a number in [0, 1], got '1.5'");
+  EXPECT_EQ(ErrorOf(head + "    wrong_category_rate: -0.1\n"),
+            ScenPath() + ":7:26: key 'sensors.segmentation.wrong_category_rate' expected a number in [0, 1], got '-0.1'");
+  EXPECT_EQ(ErrorOf(head + "    boundary_jitter_px: -1\n"),
+            ScenPath() + ":7:25: key 'sensors.segmentation.boundary_jitter_px' expected an integer in [0, 50], got '-1'");
+  EXPECT_EQ(ErrorOf(head + "    min_area_px: 150.5\n"),
+            ScenPath() + ":7:18: key 'sensors.segmentation.min_area_px' expected an integer in [0, 100000], got '150.5'");
+  EXPECT_EQ(ErrorOf(head + "    min_area_px: -1\n"),
+            ScenPath() + ":7:18: key 'sensors.segmentation.min_area_px' expected an integer in [0, 100000], got '-1'");
 }
 
 TEST_F(ConfigLoaderTest, IntegerKeyRejectsFraction) {
@@ -343,6 +362,10 @@ void ExpectSameScenario(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(sa.segmentation.miss_rate, sb.segmentation.miss_rate);
   EXPECT_EQ(sa.segmentation.dilate_px, sb.segmentation.dilate_px);
   EXPECT_EQ(sa.segmentation.latency_frames, sb.segmentation.latency_frames);
+  EXPECT_EQ(sa.segmentation.min_area_px, sb.segmentation.min_area_px);
+  EXPECT_EQ(sa.segmentation.false_positive_rate, sb.segmentation.false_positive_rate);
+  EXPECT_EQ(sa.segmentation.wrong_category_rate, sb.segmentation.wrong_category_rate);
+  EXPECT_EQ(sa.segmentation.boundary_jitter_px, sb.segmentation.boundary_jitter_px);
   ASSERT_EQ(a.obstacles.size(), b.obstacles.size());
   for (size_t i = 0; i < a.obstacles.size(); ++i) {
     const ObstacleConfig& oa = a.obstacles[i];
@@ -405,7 +428,8 @@ TEST_F(ConfigLoaderTest, ScenarioToYamlRoundTrip) {
       " depth: false, segmentation: false}\n"
       "  imu: {rate_hz: 400, accel_noise: 0.03, gyro_noise: 0.003, accel_bias_walk: 0.002, gyro_bias_walk: 1e-5}\n"
       "  joints: {rate_hz: 100, noise_rad: 0.002, resolution_rad: 0}\n"
-      "  segmentation: {miss_rate: 0.1, dilate_px: 3, latency_frames: 1}\n"
+      "  segmentation: {miss_rate: 0.1, dilate_px: 3, latency_frames: 1, min_area_px: 80,"
+      " false_positive_rate: 0.015, wrong_category_rate: 0.1234567, boundary_jitter_px: 2}\n"
       "obstacles:\n"
       "  - {name: p1, category: person, size_m: [1.7], path: [[3, -1], [3, 3]], speed_mps: 0.8, start_s: 5,"
       " pause_s: 1.5, loop: pingpong, yaw_deg: 30}\n"
@@ -426,6 +450,10 @@ TEST_F(ConfigLoaderTest, ScenarioToYamlRoundTrip) {
   ExpectSameScenario(first, second);
   EXPECT_EQ(ScenarioToYaml(second), yaml);
   EXPECT_EQ(second.obstacles[1].speed_mps, 0.1);
+  EXPECT_EQ(second.sensors.segmentation.min_area_px, 80);
+  EXPECT_EQ(second.sensors.segmentation.false_positive_rate, 0.015);
+  EXPECT_EQ(second.sensors.segmentation.wrong_category_rate, 0.1234567);
+  EXPECT_EQ(second.sensors.segmentation.boundary_jitter_px, 2);
 
   // Defaults round-trip too.
   const Scenario minimal = LoadScenario(Write("scen.yaml", kMinimal));
