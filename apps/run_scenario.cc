@@ -108,7 +108,18 @@ sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const Pinhole
 int RunScenario(const Scenario& s, const RunOptions& opt) {
   const auto wall_start = std::chrono::steady_clock::now();
   const std::string out = ResolveOutDir(s, opt);
-  WriteFileAtomic(out + "/scenario.yaml", ScenarioToYaml(s));
+  // SLAM settings: the settings file with the scenario's slam.mode / slam.dynamic keys on top; the
+  // resolved scenario records the values in effect.
+  std::optional<slam::SlamSettings> settings;
+  Scenario resolved = s;
+  if (opt.slam) {
+    const std::string settings_path = s.slam.config.empty() ? slam::DefaultSlamSettingsPath() : s.slam.config;
+    settings = slam::LoadSlamSettings(settings_path, s.slam.settings_overrides);
+    const slam::DynamicSettings& d = settings->dynamic;
+    resolved.slam.mode = settings->mode;
+    resolved.slam.dynamic = DynamicConfig{d.method, d.alpha, d.beta, d.gamma, d.th_d, d.window_s, d.window_n};
+  }
+  WriteFileAtomic(out + "/scenario.yaml", ScenarioToYaml(resolved));
 
   RobotRig rig(s);
   sim::World& world = rig.world();
@@ -130,11 +141,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   // truth share a frame (ATE aligns them anyway).
   std::unique_ptr<SlamRun> slam;
   if (opt.slam) {
-    const std::string settings_path = s.slam.config.empty() ? slam::DefaultSlamSettingsPath() : s.slam.config;
-    const slam::SlamSettings settings = slam::LoadSlamSettings(settings_path);
-    WriteFileAtomic(out + "/slam_settings.yaml", slam::SlamSettingsToYaml(settings));
+    WriteFileAtomic(out + "/slam_settings.yaml", slam::SlamSettingsToYaml(*settings));
     const Eigen::Isometry3d T_w_c0 = ToIsometry(world.GroundTruth().T_w_cam);
-    slam = std::make_unique<SlamRun>(settings, out, T_w_c0);
+    slam = std::make_unique<SlamRun>(*settings, out, T_w_c0);
   }
   eval::Trajectory gt_cam;
 
@@ -175,6 +184,10 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count());
       sim::AddPixelNoise(&frame.left_rgb, s.sensors.camera.noise_std, &sensors.camera_rng);
       sim::AddPixelNoise(&frame.right_rgb, s.sensors.camera.noise_std, &sensors.camera_rng);
+      // The simulator's truth about the obstacles, from the ideal instance image, before the
+      // detector model changes it.
+      std::vector<ObjectTruth> truth;
+      if (slam) truth = ObjectTruthOf(frame, world.obstacles(), t_ns * 1e-9);
       if (!frame.left_instance_id.empty()) sensors.segmentation.Apply(&frame);
       // Depth as a depth camera delivers it: quantised to TUM's 1/5000 m, so that a recorded
       // TUM dataset replays exactly as the live run saw it.
@@ -183,7 +196,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       gt_out.Add(gt.T_w_cam);
       gt_cam.push_back(gt.T_w_cam);
       if (slam) {
-        const slam::TrackResult r = slam->Track(frame);
+        const slam::TrackResult r = slam->Track(frame, &truth);
         metrics.track_ms.push_back(r.track_ms);
         progress.SetNote(slam::TrackStatusName(r.status));
       }

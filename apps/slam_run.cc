@@ -11,19 +11,22 @@ SlamRun::SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
                  const Eigen::Isometry3d& world_from_first_camera)
     : system_(settings, world_from_first_camera),
       writer_(out_dir + "/trajectory_est.txt"),
-      log_(std::make_unique<AtomicOutputFile>(out_dir + "/tracking.csv")) {
-  log_->Write("t_s,status,features,stereo_points,inliers,keyframe,track_ms\n");
+      log_(std::make_unique<AtomicOutputFile>(out_dir + "/tracking.csv")),
+      dynamic_(out_dir + "/dynamic.csv") {
+  log_->Write("t_s,status,features,stereo_points,inliers,keyframe,track_ms,features_dropped,dynamic_ms\n");
 }
 
-slam::TrackResult SlamRun::Track(const StereoFrame& frame) {
+slam::TrackResult SlamRun::Track(const StereoFrame& frame, const std::vector<ObjectTruth>* truth) {
   const slam::TrackResult r = system_.Track(frame);
+  dynamic_.Add(r.t_ns, r.objects, truth);
   const StampedPose p = ToStampedPose(r.t_ns, r.T_w_c);
   writer_.Add(p);
   est_.push_back(p);
   status_.push_back(r.status);
   char line[160];
-  std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%d,%.2f\n", sim::FormatSeconds(r.t_ns).c_str(),
-                slam::TrackStatusName(r.status), r.features, r.stereo_points, r.inliers, r.keyframe ? 1 : 0, r.track_ms);
+  std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%d,%.2f,%d,%.2f\n", sim::FormatSeconds(r.t_ns).c_str(),
+                slam::TrackStatusName(r.status), r.features, r.stereo_points, r.inliers, r.keyframe ? 1 : 0, r.track_ms,
+                r.features_dropped, r.dynamic_ms);
   log_->Write(line);
   return r;
 }
@@ -32,6 +35,7 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   system_.Finish();
   writer_.Close();
   log_->Commit();
+  dynamic_.Finish(json);
   const slam::SlamStats st = system_.Stats();
   SlamSummary s;
   s.frames = st.frames;
@@ -49,6 +53,11 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   json->Set("timing.track_ms_p95", s.track_ms_p95);
   json->Set("timing.local_ba_ms_median", Median(st.local_ba_ms));
   json->Set("timing.local_ba_count", static_cast<int>(st.local_ba_ms.size()));
+  json->Set("timing.dynamic_ms_median", Median(st.dynamic_ms));
+  json->Set("timing.dynamic_ms_p95", Percentile(st.dynamic_ms, 0.95));
+  json->Set("tracking.object_points_erased", st.object_points_erased);
+  json->Set("slam.mode", system_.settings().mode);
+  json->Set("slam.dynamic_method", system_.settings().dynamic.method);
   json->Set("slam.input", system_.settings().input);
   json->Set("slam.mapping_mode", system_.settings().mapping.mode);
   json->Set("slam.settings_file", system_.settings().source_file);

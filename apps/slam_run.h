@@ -2,12 +2,14 @@
 // One SLAM run over a stream of frames, as `viqu run` (live) and `viqu slam` (offline) both do
 // it: the estimate written to trajectory_est.txt as frames come, one line per frame in
 // tracking.csv (status, feature and inlier counts, keyframe, time), and
-// at the end the metrics.json keys of the SLAM part (ate.*, rpe.*, tracking.*, timing.track_*).
+// at the end the metrics.json keys of the SLAM part (ate.*, rpe.*, tracking.*, timing.track_*),
+// and dynamic.csv with the dynamic.* keys (dynamic_score.h).
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "common/atomic_output_file.h"
+#include "apps/dynamic_score.h"
 #include "common/json_writer.h"
 #include "sim/trajectory_writer.h"
 #include "slam/core/slam_system.h"
@@ -29,7 +31,8 @@ class SlamRun {
   SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
           const Eigen::Isometry3d& world_from_first_camera = Eigen::Isometry3d::Identity());
 
-  slam::TrackResult Track(const StereoFrame& frame);
+  // `truth` (live runs; null offline) scores the dynamic-object decisions in dynamic.csv.
+  slam::TrackResult Track(const StereoFrame& frame, const std::vector<ObjectTruth>* truth = nullptr);
 
   // Waits for mapping, closes the trajectory file and adds the SLAM metrics to `json`; `gt`
   // (left camera in world) gives ATE and RPE when not empty; `path_length_m` gives
@@ -42,6 +45,7 @@ class SlamRun {
   slam::SlamSystem system_;
   sim::TrajectoryWriter writer_;
   std::unique_ptr<AtomicOutputFile> log_;  // tracking.csv
+  DynamicScore dynamic_;                   // dynamic.csv
   eval::Trajectory est_;
   std::vector<slam::TrackStatus> status_;
 };

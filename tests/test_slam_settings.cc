@@ -100,6 +100,27 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(ma.min_parallax_deg, mb.min_parallax_deg);
   EXPECT_EQ(ma.culling_found_ratio, mb.culling_found_ratio);
   EXPECT_EQ(ma.redundant_keyframe_ratio, mb.redundant_keyframe_ratio);
+  EXPECT_EQ(a.mode, b.mode);
+  const DynamicSettings &da = a.dynamic, &db = b.dynamic;
+  EXPECT_EQ(da.method, db.method);
+  EXPECT_EQ(da.alpha, db.alpha);
+  EXPECT_EQ(da.beta, db.beta);
+  EXPECT_EQ(da.gamma, db.gamma);
+  EXPECT_EQ(da.th_d, db.th_d);
+  EXPECT_EQ(da.window_s, db.window_s);
+  EXPECT_EQ(da.window_n, db.window_n);
+  EXPECT_EQ(da.forget_s, db.forget_s);
+  EXPECT_EQ(da.prior.person, db.prior.person);
+  EXPECT_EQ(da.prior.box, db.prior.box);
+  EXPECT_EQ(da.prior.ball, db.prior.ball);
+  EXPECT_EQ(da.adaptive.lag_s, db.adaptive.lag_s);
+  EXPECT_EQ(da.adaptive.threshold_m, db.adaptive.threshold_m);
+  EXPECT_EQ(da.adaptive.k_sigma, db.adaptive.k_sigma);
+  EXPECT_EQ(da.adaptive.disparity_sigma_px, db.adaptive.disparity_sigma_px);
+  EXPECT_EQ(da.adaptive.hold_s, db.adaptive.hold_s);
+  EXPECT_EQ(da.adaptive.min_matches, db.adaptive.min_matches);
+  EXPECT_EQ(da.adaptive.max_hamming, db.adaptive.max_hamming);
+  EXPECT_EQ(da.adaptive.static_pose_min_share, db.adaptive.static_pose_min_share);
 }
 
 // Number of "key: value" lines (not counting section headers) in YAML text.
@@ -120,7 +141,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 3 + 6 + 10 + 14 + 9;
+constexpr int kLeafKeys = 4 + 6 + 10 + 14 + 9 + 8 + 3 + 8;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -173,6 +194,17 @@ TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
   s.mapping.min_parallax_deg = 0.5;
   s.mapping.culling_found_ratio = 0;
   s.mapping.redundant_keyframe_ratio = 0.95;
+  s.mode = "visual_dynamic";
+  s.dynamic.method = "paper";
+  s.dynamic.alpha = 0.7;
+  s.dynamic.beta = 1.3;
+  s.dynamic.gamma = 0.25;
+  s.dynamic.th_d = 0.05;
+  s.dynamic.window_s = 1.5;
+  s.dynamic.window_n = 12;
+  s.dynamic.forget_s = 3;
+  s.dynamic.prior = {0.9, 0.1, 0.4};
+  s.dynamic.adaptive = {0.8, 0.03, 2.5, 0.7, 0.5, 8, 40, 0.3};
   s.source_file = "/some/where.yaml";
 
   const std::string yaml = SlamSettingsToYaml(s);
@@ -223,6 +255,20 @@ TEST_F(SlamSettingsTest, UnknownKeysAtTopLevelAndInEverySection) {
   EXPECT_EQ(ErrorOf("mapping:\n  ba_windows: 3\n").rfind(Path() + ":2:3: unknown key 'mapping.ba_windows'", 0), 0u);
   const std::string set = ErrorOf("", {"tracking.min_inlier=5"});
   EXPECT_EQ(set.rfind("--set tracking.min_inlier=5: unknown key 'tracking.min_inlier'", 0), 0u) << set;
+}
+
+TEST_F(SlamSettingsTest, DynamicKeysAreCheckedLikeTheRest) {
+  EXPECT_EQ(ErrorOf("dynamic:\n  method: magic\n"),
+            Path() + ":2:11: key 'dynamic.method' expected one of none, semantic, paper, adaptive, got 'magic'");
+  EXPECT_EQ(ErrorOf("dynamic:\n  adaptive: {lag: 1}\n").rfind(Path() + ":2:14: unknown key 'dynamic.adaptive.lag'", 0), 0u);
+  EXPECT_EQ(ErrorOf("mode: dynamic\n"),
+            Path() + ":1:7: key 'mode' expected one of visual, visual_dynamic, full, got 'dynamic'");
+  EXPECT_EQ(ErrorOf("dynamic: {prior: {person: 1.5}}\n"),
+            Path() + ":1:27: key 'dynamic.prior.person' expected a number in [0, 1], got '1.5'");
+  const SlamSettings s = LoadSlamSettings(DefaultSlamSettingsPath(), {"dynamic.method=none", "mode=visual_dynamic"});
+  EXPECT_EQ(s.dynamic.method, "none");
+  EXPECT_FALSE(s.DynamicStageOn());
+  EXPECT_TRUE(SlamSettings().DynamicStageOn());
 }
 
 TEST_F(SlamSettingsTest, WrongType) {

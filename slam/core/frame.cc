@@ -39,6 +39,35 @@ std::vector<int> FrameFeatures::InArea(double u, double v, double radius, int mi
   return out;
 }
 
+void FrameFeatures::LabelObjects(const cv::Mat& instance_id) {
+  object.assign(keypoints.size(), 0);
+  if (instance_id.empty()) return;
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const int u = std::clamp(static_cast<int>(std::lround(keypoints[i].pt.x)), 0, instance_id.cols - 1);
+    const int v = std::clamp(static_cast<int>(std::lround(keypoints[i].pt.y)), 0, instance_id.rows - 1);
+    object[i] = instance_id.at<uint16_t>(v, u);
+  }
+}
+
+std::shared_ptr<FrameFeatures> FrameFeatures::Subset(const std::vector<bool>& keep, int width, int height) const {
+  auto f = std::make_shared<FrameFeatures>();
+  f->level_sigma2 = level_sigma2;
+  f->level_scale = level_scale;
+  std::vector<int> rows;
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    if (!keep[i]) continue;
+    rows.push_back(static_cast<int>(i));
+    f->keypoints.push_back(keypoints[i]);
+    f->u_right.push_back(u_right[i]);
+    f->depth.push_back(depth[i]);
+    f->object.push_back(object.empty() ? 0 : object[i]);
+  }
+  f->descriptors.create(static_cast<int>(rows.size()), descriptors.cols, descriptors.type());
+  for (size_t r = 0; r < rows.size(); ++r) descriptors.row(rows[r]).copyTo(f->descriptors.row(static_cast<int>(r)));
+  f->BuildGrid(width, height);
+  return f;
+}
+
 int Frame::MatchedCount() const {
   int n = 0;
   for (size_t i = 0; i < points.size(); ++i) {

@@ -25,6 +25,7 @@ struct FrameFeatures {
   cv::Mat descriptors;                 // CV_8U, 32 bytes a row
   std::vector<float> u_right;          // column in the right image, -1 if no stereo match
   std::vector<float> depth;            // stereo/RGB-D depth (m), -1 if none
+  std::vector<uint16_t> object;        // segmentation instance id under the feature (0 = none)
   std::vector<float> level_sigma2;     // squared scale of each pyramid level
   std::vector<float> level_scale;      // scale of each pyramid level
   int grid_cols = 0, grid_rows = 0;
@@ -34,6 +35,10 @@ struct FrameFeatures {
   void BuildGrid(int width, int height);
   // Features within `radius` px of (u, v) whose level is in [min_level, max_level] (-1: any).
   std::vector<int> InArea(double u, double v, double radius, int min_level = -1, int max_level = -1) const;
+  // Sets `object` from a CV_16U instance image of the image size (empty: every feature 0).
+  void LabelObjects(const cv::Mat& instance_id);
+  // The features whose `keep` entry is true, in order, with their grid rebuilt.
+  std::shared_ptr<FrameFeatures> Subset(const std::vector<bool>& keep, int width, int height) const;
   Eigen::Vector3d Unproject(const StereoCamera& cam, int i) const {
     return cam.Unproject(keypoints[i].pt.x, keypoints[i].pt.y, depth[i]);
   }

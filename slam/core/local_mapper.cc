@@ -206,6 +206,7 @@ int LocalMapper::TriangulateNewPoints(KeyFrame* kf) {
       const double factor = 1.5 * (f1.level_scale.size() > 1 ? f1.level_scale[1] : 1.2);
       if (ratio_dist * factor < ratio_octave || ratio_dist > ratio_octave * factor) continue;
       MapPoint* mp = map_->AddPoint(p, kf);
+      mp->object = f1.object.empty() ? 0 : f1.object[i1];
       Map::AddObservation(mp, kf, i1);
       Map::AddObservation(mp, kf2, i2);
       mp->UpdateFromObservations();

@@ -144,6 +144,16 @@ void Map::EraseObservation(MapPoint* p, KeyFrame* kf) {
   if (p->observations.empty()) p->bad = true;
 }
 
+int Map::EraseObjectPoints(uint16_t object) {
+  int n = 0;
+  for (const auto& p : points_) {
+    if (p->bad || p->object != object || object == 0) continue;
+    ErasePoint(p.get());
+    ++n;
+  }
+  return n;
+}
+
 void Map::ErasePoint(MapPoint* p) {
   p->bad = true;
   for (const auto& [kf, idx] : p->observations) {

@@ -40,6 +40,7 @@ class MapPoint {
   int visible = 1;                         // frames where it projected into the image
   int found = 1;                           // frames where it was matched
   int64_t first_keyframe_id = 0;
+  uint16_t object = 0;                     // segmentation instance of the feature that created it (0 = none)
   bool bad = false;
 
   // Recomputes descriptor, normal and distance range from the observations.
@@ -85,6 +86,9 @@ class Map {
   static void EraseObservation(MapPoint* p, KeyFrame* kf);
   // Flags the point bad and removes it from every keyframe.
   static void ErasePoint(MapPoint* p);
+  // Erases every good point created from a feature on segmentation instance `object` (> 0);
+  // returns how many.
+  int EraseObjectPoints(uint16_t object);
   // Replaces `a` by `b` everywhere (duplicate fusion); `a` becomes bad.
   static void Replace(MapPoint* a, MapPoint* b);
   // Flags the keyframe bad, drops its observations and reconnects its neighbours.

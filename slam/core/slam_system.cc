@@ -1,5 +1,6 @@
 #include "slam/core/slam_system.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "common/errors.h"
@@ -27,6 +28,7 @@ struct SlamSystem::Impl {
   Map map;
   Tracker tracker;
   std::unique_ptr<LocalMapper> mapper;
+  std::unique_ptr<DynamicObjects> dynamic;
   SlamStats stats;
 };
 
@@ -53,9 +55,43 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
     }
     m.tracker.SetCamera(frame);
     m.mapper = std::make_unique<LocalMapper>(m.tracker.camera(), m.settings, &m.map);
+    m.dynamic = std::make_unique<DynamicObjects>(m.settings, m.tracker.camera());
   }
-  TrackResult r = m.tracker.Track(frame, m.mapper.get());
-  r.track_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  using Clock = std::chrono::steady_clock;
+  auto ms_since = [](Clock::time_point a) { return std::chrono::duration<double, std::milli>(Clock::now() - a).count(); };
+  const std::shared_ptr<FrameFeatures> features = m.tracker.ExtractFeatures(frame);
+
+  // Dynamic objects, before tracking: the features of objects judged dynamic go.
+  auto td = Clock::now();
+  const std::vector<bool> keep = m.dynamic->KeepMask(*features, frame.instances);
+  const int kept = static_cast<int>(std::count(keep.begin(), keep.end(), true));
+  std::shared_ptr<const FrameFeatures> tracked = features;
+  if (kept < static_cast<int>(keep.size())) tracked = features->Subset(keep, m.tracker.camera().width, m.tracker.camera().height);
+  double dynamic_ms = ms_since(td);
+
+  TrackResult r = m.tracker.Track(frame, tracked, m.mapper.get());
+
+  // After tracking: judge the objects again with the frame's pose.
+  td = Clock::now();
+  if (m.dynamic->method() != DynamicMethod::kNone && r.status != TrackStatus::kLost && !m.dynamic->reports().empty()) {
+    std::vector<bool> movable(static_cast<size_t>(m.dynamic->reports().back().id) + 1, false);
+    for (const ObjectReport& o : m.dynamic->reports()) movable[o.id] = true;
+    const Eigen::Isometry3d T_c_w =
+        m.tracker.LastPoseWithout(movable, m.settings.dynamic.adaptive.static_pose_min_share, &r.excluded_share);
+    const std::vector<Eigen::Vector3d> points =
+        m.dynamic->NeedsMapPoints() ? m.tracker.LocalMapPointPositions() : std::vector<Eigen::Vector3d>{};
+    const std::vector<uint16_t> turned = m.dynamic->Update(frame.t_ns, *features, frame.left_instance_id, T_c_w, points);
+    if (!turned.empty()) {
+      std::lock_guard<std::mutex> lock(m.map.mutex);
+      for (uint16_t id : turned) m.stats.object_points_erased += m.map.EraseObjectPoints(id);
+    }
+  }
+  dynamic_ms += ms_since(td);
+  r.features = static_cast<int>(features->size());
+  r.features_dropped = r.features - kept;
+  r.objects = m.dynamic->reports();
+  r.dynamic_ms = dynamic_ms;
+  r.track_ms = ms_since(t0);
   // Mapping after the keyframe: inline in sync mode (not counted as tracking time), queued in
   // realtime mode.
   if (KeyFrame* kf = m.tracker.TakePendingKeyFrame()) m.mapper->Insert(kf);
@@ -64,6 +100,7 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
   if (r.status == TrackStatus::kLost) ++m.stats.lost_frames;
   if (r.status == TrackStatus::kRelocalised) ++m.stats.relocalisations;
   m.stats.track_ms.push_back(r.track_ms);
+  m.stats.dynamic_ms.push_back(r.dynamic_ms);
   return r;
 }
 

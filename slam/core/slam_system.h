@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "slam/core/dynamic_objects.h"
 #include "slam/measurements/stereo_frame.h"
 #include "slam/settings/slam_settings.h"
 
@@ -28,9 +29,14 @@ struct TrackResult {
   TrackStatus status = TrackStatus::kLost;
   bool keyframe = false;         // this frame became a keyframe
   int features = 0;              // features extracted in the left image
+  int features_dropped = 0;      // of those, removed on dynamic objects before tracking
   int stereo_points = 0;         // features with depth
   int inliers = 0;               // map-point matches kept by pose optimisation
-  double track_ms = 0;           // wall time of Track() (ms)
+  double track_ms = 0;           // wall time of Track() (ms), the dynamic stage included
+  double dynamic_ms = 0;         // of that, the dynamic-object stage (ms)
+  double excluded_share = 0;     // share of inliers on movable objects (judged with a pose without them above
+                                 // dynamic.adaptive.static_pose_min_share)
+  std::vector<ObjectReport> objects;  // movable objects in the frame's masks
 };
 
 struct SlamStats {
@@ -41,6 +47,8 @@ struct SlamStats {
   int map_points = 0;            // map points in the map now
   std::vector<double> track_ms;  // per frame (ms)
   std::vector<double> local_ba_ms;  // per local BA (ms)
+  std::vector<double> dynamic_ms;   // per frame (ms)
+  int object_points_erased = 0;     // map points culled because their object turned dynamic
 };
 
 class SlamSystem {

@@ -68,6 +68,10 @@ void Tracker::SetCamera(const StereoFrame& frame) {
 }
 
 std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame) const {
+  if (frame.intrinsics.width != cam_.width || frame.intrinsics.height != cam_.height ||
+      frame.intrinsics.fx != cam_.fx) {
+    throw InputError("frame at t=" + std::to_string(frame.t_ns) + " ns has intrinsics that differ from the first frame's");
+  }
   auto f = std::make_shared<FrameFeatures>();
   const bool rgbd = settings_.input == "rgbd";
   const cv::Mat left = ToGrey(frame.left_rgb);
@@ -111,22 +115,60 @@ std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame
     f->level_scale.push_back(static_cast<float>(s));
     f->level_sigma2.push_back(static_cast<float>(s * s));
   }
+  if (!frame.left_instance_id.empty() &&
+      (frame.left_instance_id.cols != cam_.width || frame.left_instance_id.rows != cam_.height ||
+       frame.left_instance_id.type() != CV_16UC1)) {
+    throw InputError("frame at t=" + std::to_string(frame.t_ns) + " ns: the instance image is not " +
+                     std::to_string(cam_.width) + "x" + std::to_string(cam_.height) + " 16-bit");
+  }
+  f->LabelObjects(frame.left_instance_id);
   f->BuildGrid(cam_.width, cam_.height);
   return f;
 }
 
-TrackResult Tracker::Track(const StereoFrame& frame, LocalMapper* mapper) {
-  if (frame.intrinsics.width != cam_.width || frame.intrinsics.height != cam_.height ||
-      frame.intrinsics.fx != cam_.fx) {
-    throw InputError("frame at t=" + std::to_string(frame.t_ns) + " ns has intrinsics that differ from the first frame's");
+Eigen::Isometry3d Tracker::LastPoseWithout(const std::vector<bool>& excluded_instance, double min_share,
+                                           double* excluded_share) {
+  if (excluded_share) *excluded_share = 0;
+  std::lock_guard<std::mutex> lock(map_->mutex);
+  if (!last_.features) return last_.T_c_w;
+  Frame f = last_;
+  int inliers = 0, excluded = 0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (!f.points[i] || f.points[i]->bad) continue;
+    ++inliers;
+    const uint16_t id = f.features->object[i];
+    if (id < excluded_instance.size() && excluded_instance[id]) {
+      f.points[i] = nullptr;
+      ++excluded;
+    }
   }
+  if (inliers == 0 || excluded == 0) return last_.T_c_w;
+  const double share = static_cast<double>(excluded) / inliers;
+  if (excluded_share) *excluded_share = share;
+  if (share < min_share) return last_.T_c_w;
+  if (inliers - excluded < settings_.tracking.min_inliers) return last_.T_c_w;
+  if (OptimizePose(cam_, pose_opt_, &f) < settings_.tracking.min_inliers) return last_.T_c_w;
+  return f.T_c_w;
+}
+
+std::vector<Eigen::Vector3d> Tracker::LocalMapPointPositions() const {
+  std::lock_guard<std::mutex> lock(map_->mutex);
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(local_points_.size());
+  for (const MapPoint* p : local_points_) {
+    if (!p->bad) out.push_back(p->p_w);
+  }
+  return out;
+}
+
+TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const FrameFeatures> features,
+                           LocalMapper* mapper) {
   if (frame_index_ > 0 && frame.t_ns <= last_t_ns_) {
     throw InputError("frame timestamps must increase: " + std::to_string(frame.t_ns) + " ns after " +
                      std::to_string(last_t_ns_) + " ns");
   }
   TrackResult r;
   r.t_ns = frame.t_ns;
-  auto features = ExtractFeatures(frame);
   r.features = static_cast<int>(features->size());
   for (float d : features->depth) r.stereo_points += d > 0 ? 1 : 0;
 
@@ -213,6 +255,7 @@ bool Tracker::Initialise() {
   for (size_t i = 0; i < f.size(); ++i) {
     if (f.depth[i] <= 0) continue;
     MapPoint* p = map_->AddPoint(T_w_c * f.Unproject(cam_, static_cast<int>(i)), kf);
+    p->object = f.object[i];
     Map::AddObservation(p, kf, static_cast<int>(i));
     p->UpdateFromObservations();
     cur_.points[i] = p;
@@ -502,6 +545,7 @@ KeyFrame* Tracker::CreateKeyFrame(LocalMapper* mapper) {
     ++considered;
     if (kf->points[i]) continue;
     MapPoint* p = map_->AddPoint(T_w_c * f.Unproject(cam_, i), kf);
+    p->object = f.object[i];
     Map::AddObservation(p, kf, i);
     p->UpdateFromObservations();
     cur_.points[i] = p;

@@ -31,7 +31,22 @@ class Tracker {
   // first frame; later frames must have the same intrinsics. `mapper` (may be null) is asked whether it is idle
   // and is told about new stereo points; a new keyframe is handed over by TakePendingKeyFrame()
   // after Track() returns, outside the lock.
-  TrackResult Track(const StereoFrame& frame, LocalMapper* mapper);
+  // `features` are the frame's features as ExtractFeatures() gave them, less those the
+  // dynamic-object stage removed.
+  TrackResult Track(const StereoFrame& frame, std::shared_ptr<const FrameFeatures> features, LocalMapper* mapper);
+
+  // Features of both images, stereo depth, and the segmentation instance under each feature.
+  // InputError for an instance image of another size than the image.
+  std::shared_ptr<FrameFeatures> ExtractFeatures(const StereoFrame& frame) const;
+
+  // The pose of the frame just tracked (map to camera) optimised again without the matches on
+  // features whose instance `excluded` says; the tracked pose when fewer than
+  // tracking.min_inliers remain or when the excluded share of the frame's inliers is below
+  // `min_share` (then nothing is optimised). `*excluded_share` (may be null): that share.
+  Eigen::Isometry3d LastPoseWithout(const std::vector<bool>& excluded_instance, double min_share,
+                                    double* excluded_share);
+  // Positions of the local map's good points (map frame, m) after the last Track().
+  std::vector<Eigen::Vector3d> LocalMapPointPositions() const;
   KeyFrame* TakePendingKeyFrame() {
     KeyFrame* kf = pending_keyframe_;
     pending_keyframe_ = nullptr;
@@ -43,7 +58,6 @@ class Tracker {
   void SetCamera(const StereoFrame& frame);
 
  private:
-  std::shared_ptr<FrameFeatures> ExtractFeatures(const StereoFrame& frame) const;
   bool Initialise();
   void AddTemporaryPointsToLastFrame();
   bool TrackWithMotionModel();

@@ -14,6 +14,8 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string> kInputs = {"stereo", "rgbd"};
 const std::vector<std::string> kMappingModes = {"sync", "realtime"};
+const std::vector<std::string> kModes = {"visual", "visual_dynamic", "full"};
+const std::vector<std::string> kDynamicMethods = {"none", "semantic", "paper", "adaptive"};
 
 // Ranges shared by several keys.
 const NumberRange kRatio = NumberRange::OpenClosed(0, 1);        // a share or a ratio test, (0, 1]
@@ -105,6 +107,34 @@ void ReadMapping(YamlMapReader* m, MappingSettings* p) {
   m->RejectUnknownKeys();
 }
 
+void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
+  m->Choice("method", &d->method, kDynamicMethods);
+  m->Number("alpha", &d->alpha, NumberRange::NonNegative());
+  m->Number("beta", &d->beta, NumberRange::NonNegative());
+  m->Number("gamma", &d->gamma, NumberRange::NonNegative());
+  m->Number("th_d", &d->th_d, NumberRange::NonNegative());
+  m->Number("window_s", &d->window_s, NumberRange::OpenClosed(0, 600));
+  m->Integer("window_n", &d->window_n, NumberRange::Closed(2, 10000));
+  m->Number("forget_s", &d->forget_s, NumberRange::OpenClosed(0, 600));
+  YamlMapReader prior = m->Map("prior");
+  prior.Number("person", &d->prior.person, NumberRange::Closed(0, 1));
+  prior.Number("box", &d->prior.box, NumberRange::Closed(0, 1));
+  prior.Number("ball", &d->prior.ball, NumberRange::Closed(0, 1));
+  prior.RejectUnknownKeys();
+  YamlMapReader a = m->Map("adaptive");
+  AdaptiveDynamicSettings* ad = &d->adaptive;
+  a.Number("lag_s", &ad->lag_s, NumberRange::OpenClosed(0, 60));
+  a.Number("threshold_m", &ad->threshold_m, NumberRange::NonNegative());
+  a.Number("k_sigma", &ad->k_sigma, NumberRange::Closed(0, 100));
+  a.Number("disparity_sigma_px", &ad->disparity_sigma_px, NumberRange::Closed(0, 100));
+  a.Number("hold_s", &ad->hold_s, NumberRange::Closed(0, 600));
+  a.Integer("min_matches", &ad->min_matches, kCount1);
+  a.Integer("max_hamming", &ad->max_hamming, kHamming);
+  a.Number("static_pose_min_share", &ad->static_pose_min_share, NumberRange::Closed(0, 1));
+  a.RejectUnknownKeys();
+  m->RejectUnknownKeys();
+}
+
 }  // namespace
 
 SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides) {
@@ -116,6 +146,7 @@ SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::st
   s.source_file = fs::absolute(path).lexically_normal().string();
 
   YamlMapReader top(src, root, "");
+  top.Choice("mode", &s.mode, kModes);
   top.Choice("input", &s.input, kInputs);
   top.Number("rgbd_max_depth_m", &s.rgbd_max_depth_m, NumberRange::Positive());
   top.Number("rgbd_virtual_baseline_m", &s.rgbd_virtual_baseline_m, NumberRange::OpenClosed(0, 10));
@@ -127,6 +158,8 @@ SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::st
   ReadTracking(&tracking, &s.tracking);
   YamlMapReader mapping = top.Map("mapping");
   ReadMapping(&mapping, &s.mapping);
+  YamlMapReader dynamic = top.Map("dynamic");
+  ReadDynamic(&dynamic, &s.dynamic);
   top.RejectUnknownKeys();
 
   // The matcher searches right keypoints at the extractor's pyramid levels: the scales must agree.
@@ -146,6 +179,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   if (!s.source_file.empty()) header += "; read from " + s.source_file;
   out << YAML::Comment(header) << YAML::Newline;
   out << YAML::BeginMap;
+  EmitWord(out, "mode", s.mode);
   EmitWord(out, "input", s.input);
   EmitNumber(out, "rgbd_max_depth_m", s.rgbd_max_depth_m);
   EmitNumber(out, "rgbd_virtual_baseline_m", s.rgbd_virtual_baseline_m);
@@ -201,6 +235,34 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "min_parallax_deg", m.min_parallax_deg);
   EmitNumber(out, "culling_found_ratio", m.culling_found_ratio);
   EmitNumber(out, "redundant_keyframe_ratio", m.redundant_keyframe_ratio);
+  out << YAML::EndMap;
+
+  const DynamicSettings& d = s.dynamic;
+  out << YAML::Key << "dynamic" << YAML::Value << YAML::BeginMap;
+  EmitWord(out, "method", d.method);
+  EmitNumber(out, "alpha", d.alpha);
+  EmitNumber(out, "beta", d.beta);
+  EmitNumber(out, "gamma", d.gamma);
+  EmitNumber(out, "th_d", d.th_d);
+  EmitNumber(out, "window_s", d.window_s);
+  EmitInt(out, "window_n", d.window_n);
+  EmitNumber(out, "forget_s", d.forget_s);
+  out << YAML::Key << "prior" << YAML::Value << YAML::BeginMap;
+  EmitNumber(out, "person", d.prior.person);
+  EmitNumber(out, "box", d.prior.box);
+  EmitNumber(out, "ball", d.prior.ball);
+  out << YAML::EndMap;
+  const AdaptiveDynamicSettings& a = d.adaptive;
+  out << YAML::Key << "adaptive" << YAML::Value << YAML::BeginMap;
+  EmitNumber(out, "lag_s", a.lag_s);
+  EmitNumber(out, "threshold_m", a.threshold_m);
+  EmitNumber(out, "k_sigma", a.k_sigma);
+  EmitNumber(out, "disparity_sigma_px", a.disparity_sigma_px);
+  EmitNumber(out, "hold_s", a.hold_s);
+  EmitInt(out, "min_matches", a.min_matches);
+  EmitInt(out, "max_hamming", a.max_hamming);
+  EmitNumber(out, "static_pose_min_share", a.static_pose_min_share);
+  out << YAML::EndMap;
   out << YAML::EndMap;
 
   out << YAML::EndMap;

@@ -40,8 +40,44 @@ struct MappingSettings {
   double redundant_keyframe_ratio = 0.9;  // a keyframe whose points are seen by 3 others in this share is culled
 };
 
+// Per-category prior Pr_k of eq. 3 (how likely an object of the category moves, 0-1).
+struct CategoryPriors {
+  double person = 1.0;
+  double box = 0.3;
+  double ball = 0.6;
+};
+
+// The `adaptive` method: an object is dynamic when the median world displacement of its matched
+// features over `lag_s` exceeds a threshold that grows with stereo depth uncertainty.
+struct AdaptiveDynamicSettings {
+  double lag_s = 1.0;                // features are compared with the object's features this long ago (s)
+  double threshold_m = 0.02;         // displacement beyond noise that makes an object dynamic (m)
+  double k_sigma = 3.0;              // plus this many standard errors of the displacement (count)
+  double disparity_sigma_px = 0.5;   // stereo disparity noise behind the standard error (px)
+  double hold_s = 1.0;               // a dynamic object stays dynamic this long after its last motion (s)
+  int min_matches = 6;               // matched features needed to judge an object (count)
+  int max_hamming = 50;              // descriptor distance for matching an object's features over time (bits)
+  double static_pose_min_share = 0.2;  // movable objects carry this share of inliers: judge with a pose from the rest (ratio)
+};
+
+// Dynamic objects (paper eqs. 1-4): how objects in the segmentation masks are judged.
+struct DynamicSettings {
+  std::string method = "adaptive";   // none | semantic | paper | adaptive
+  // The paper's eqs. 2-4 (method: paper).
+  double alpha = 1.0;                // weight of the change of the labelled map points' mean norm (1)
+  double beta = 1.0;                 // weight of the change of the mean mask depth (1)
+  double gamma = 0.5;                // weight of the category prior (m per unit prior)
+  double th_d = 0.1;                 // threshold on the change of A (m)
+  double window_s = 6;               // eq. 2 window S, in seconds of frames (s)
+  int window_n = 10;                 // eq. 4 window N (frames)
+  CategoryPriors prior;
+  AdaptiveDynamicSettings adaptive;
+  double forget_s = 2.0;             // an object unseen this long starts a new history (s)
+};
+
 struct SlamSettings {
   std::string source_file;           // the YAML the settings came from ("" = built-in defaults)
+  std::string mode = "full";         // visual | visual_dynamic (plus dynamic objects) | full (plus leg odometry)
   std::string input = "stereo";      // stereo | rgbd (depth from left_depth_m)
   double rgbd_max_depth_m = 6;       // rgbd: depth beyond this is ignored (m)
   double rgbd_virtual_baseline_m = 0.08;  // rgbd: baseline of the virtual right camera (m)
@@ -49,6 +85,10 @@ struct SlamSettings {
   StereoMatcherOptions stereo;
   TrackingSettings tracking;
   MappingSettings mapping;
+  DynamicSettings dynamic;
+
+  // The dynamic-object stage runs (mode visual_dynamic or full, method other than none).
+  bool DynamicStageOn() const { return mode != "visual" && dynamic.method != "none"; }
 };
 
 // Reads settings from `path`. Keys not in the file keep their defaults; `overrides` are

@@ -1,0 +1,151 @@
+#include "slam/core/dynamic_objects.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace viqu::slam {
+namespace {
+
+constexpr int kMaxSnapshotPoints = 256;  // features per object kept for matching over time (bounds
+                                         // the quadratic descriptor search; nearest first)
+
+}  // namespace
+
+DynamicMethod DynamicMethodOf(const SlamSettings& s) {
+  if (s.mode == "visual") return DynamicMethod::kNone;
+  const std::string& m = s.dynamic.method;
+  if (m == "semantic") return DynamicMethod::kSemantic;
+  if (m == "paper") return DynamicMethod::kPaper;
+  if (m == "adaptive") return DynamicMethod::kAdaptive;
+  return DynamicMethod::kNone;
+}
+
+bool IsMovable(Category c) { return c == Category::kPerson || c == Category::kBox || c == Category::kBall; }
+
+DynamicObjects::DynamicObjects(const SlamSettings& settings, const StereoCamera& cam)
+    : settings_(settings.dynamic), method_(DynamicMethodOf(settings)), cam_(cam) {}
+
+std::vector<bool> DynamicObjects::KeepMask(const FrameFeatures& f, const std::vector<SegmentInstance>& instances) {
+  reports_.clear();
+  std::map<uint16_t, size_t> report_of;
+  for (const SegmentInstance& inst : instances) {
+    if (inst.id == 0 || !IsMovable(inst.category) || report_of.count(inst.id)) continue;
+    ObjectReport r;
+    r.id = inst.id;
+    r.name = inst.name;
+    r.category = inst.category;
+    report_of[inst.id] = 0;
+    reports_.push_back(r);
+  }
+  std::sort(reports_.begin(), reports_.end(), [](const ObjectReport& a, const ObjectReport& b) { return a.id < b.id; });
+  for (size_t i = 0; i < reports_.size(); ++i) {
+    ObjectReport& r = reports_[i];
+    report_of[r.id] = i;
+    auto it = objects_.find(r.id);
+    const bool dynamic = method_ == DynamicMethod::kSemantic || (it != objects_.end() && it->second.dynamic);
+    r.dynamic = dynamic;
+  }
+  std::vector<bool> keep(f.size(), true);
+  for (size_t i = 0; i < f.size(); ++i) {
+    const uint16_t id = f.object.empty() ? 0 : f.object[i];
+    if (id == 0) continue;
+    const auto it = report_of.find(id);
+    if (it == report_of.end()) continue;
+    ObjectReport& r = reports_[it->second];
+    ++r.features;
+    if (r.dynamic && method_ != DynamicMethod::kNone) {
+      keep[i] = false;
+      ++r.dropped;
+    }
+  }
+  return keep;
+}
+
+ObjectSnapshot DynamicObjects::Snapshot(int64_t t_ns, const FrameFeatures& f, uint16_t id,
+                                        const Eigen::Isometry3d& T_w_c) const {
+  std::vector<std::pair<float, int>> by_depth;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (f.object[i] == id && f.depth[i] > 0) by_depth.emplace_back(f.depth[i], static_cast<int>(i));
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  if (by_depth.size() > kMaxSnapshotPoints) by_depth.resize(kMaxSnapshotPoints);
+  ObjectSnapshot s;
+  s.t_ns = t_ns;
+  s.descriptors.create(static_cast<int>(by_depth.size()), f.descriptors.cols, f.descriptors.type());
+  const double sigma_d = settings_.adaptive.disparity_sigma_px;
+  for (size_t k = 0; k < by_depth.size(); ++k) {
+    const auto [z, i] = by_depth[k];
+    s.p_w.push_back(T_w_c * f.Unproject(cam_, i));
+    s.sigma_m.push_back(static_cast<double>(z) * z * sigma_d / cam_.bf);
+    f.descriptors.row(i).copyTo(s.descriptors.row(static_cast<int>(k)));
+  }
+  return s;
+}
+
+std::map<uint16_t, double> DynamicObjects::LabelledPointNorms(const cv::Mat& instance_id, const Eigen::Isometry3d& T_c_w,
+                                                              const std::vector<Eigen::Vector3d>& map_points_w) const {
+  std::map<uint16_t, std::pair<double, int>> sums;
+  if (instance_id.empty()) return {};
+  for (const Eigen::Vector3d& p_w : map_points_w) {
+    const Eigen::Vector3d p_c = T_c_w * p_w;
+    if (p_c.z() <= 0) continue;
+    const Eigen::Vector2d uv = cam_.Project(p_c);
+    if (!cam_.InImage(uv.x(), uv.y())) continue;
+    const uint16_t id = instance_id.at<uint16_t>(static_cast<int>(std::lround(uv.y())), static_cast<int>(std::lround(uv.x())));
+    if (id == 0) continue;
+    auto& [sum, n] = sums[id];
+    sum += p_w.norm();
+    ++n;
+  }
+  std::map<uint16_t, double> out;
+  for (const auto& [id, sn] : sums) out[id] = sn.first / sn.second;
+  return out;
+}
+
+std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& f, const cv::Mat& instance_id,
+                                             const Eigen::Isometry3d& T_c_w,
+                                             const std::vector<Eigen::Vector3d>& map_points_w) {
+  std::vector<uint16_t> turned;
+  const int64_t forget_ns = static_cast<int64_t>(settings_.forget_s * 1e9);
+  for (auto it = objects_.begin(); it != objects_.end();) {
+    it = t_ns - it->second.last_seen_ns > forget_ns ? objects_.erase(it) : std::next(it);
+  }
+  if (method_ == DynamicMethod::kNone) return turned;
+  const Eigen::Isometry3d T_w_c = T_c_w.inverse();
+  std::map<uint16_t, double> norms;
+  if (method_ == DynamicMethod::kPaper) norms = LabelledPointNorms(instance_id, T_c_w, map_points_w);
+  for (ObjectReport& r : reports_) {
+    ObjectState& o = objects_[r.id];
+    o.last_seen_ns = t_ns;
+    const bool was = o.dynamic;
+    switch (method_) {
+      case DynamicMethod::kSemantic:
+        o.dynamic = true;
+        break;
+      case DynamicMethod::kPaper: {
+        std::vector<float> depths;
+        for (size_t i = 0; i < f.size(); ++i) {
+          if (f.object[i] == r.id) depths.push_back(f.depth[i]);
+        }
+        const auto n = norms.find(r.id);
+        o.dynamic = o.paper.Add(t_ns, n == norms.end() ? 0.0 : n->second, MeanMaskDepth(depths),
+                                CategoryPrior(r.category, settings_.prior), settings_);
+        r.score = o.paper.last_delta_a();
+        r.threshold = settings_.th_d;
+        break;
+      }
+      case DynamicMethod::kAdaptive:
+        o.dynamic = o.motion.Add(Snapshot(t_ns, f, r.id, T_w_c), settings_.adaptive);
+        r.score = o.motion.last().displacement_m;
+        r.threshold = o.motion.last().threshold_m;
+        break;
+      case DynamicMethod::kNone:
+        break;
+    }
+    r.dynamic = o.dynamic;
+    if (o.dynamic && !was) turned.push_back(r.id);
+  }
+  return turned;
+}
+
+}  // namespace viqu::slam

@@ -1,0 +1,271 @@
+// The adaptive dynamic test (slam/core/object_motion.h) and the dynamic-object stage
+// (slam/core/dynamic_objects.h) on synthetic object tracks with stereo-like depth noise.
+#include "slam/core/object_motion.h"
+
+#include <algorithm>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "slam/core/dynamic_objects.h"
+
+namespace viqu::slam {
+namespace {
+
+constexpr int64_t kFrameNs = 50'000'000;  // 20 Hz
+constexpr double kBf = 457.0 * 0.04;      // fx * baseline of the default camera (px m)
+
+// An object of `n` points about 1 m ahead of a camera at the world origin looking along +z,
+// each with a fixed random descriptor; Observe() returns its snapshot after moving by
+// `offset_w`, with the depth noise that stereo would give.
+class SyntheticObject {
+ public:
+  SyntheticObject(int n, uint64_t seed) : rng_(seed) {
+    std::uniform_real_distribution<double> lateral(-0.2, 0.2), depth(0.9, 1.1);
+    std::uniform_int_distribution<int> byte(0, 255);
+    descriptors_.create(n, 32, CV_8U);
+    for (int i = 0; i < n; ++i) {
+      points_.emplace_back(lateral(rng_), lateral(rng_), depth(rng_));
+      for (int b = 0; b < 32; ++b) descriptors_.at<uint8_t>(i, b) = static_cast<uint8_t>(byte(rng_));
+    }
+  }
+  ObjectSnapshot Observe(int64_t t_ns, const Eigen::Vector3d& offset_w, double disparity_sigma_px = 0.5) {
+    ObjectSnapshot s;
+    s.t_ns = t_ns;
+    s.descriptors = descriptors_.clone();
+    std::normal_distribution<double> unit(0.0, 1.0);
+    for (const Eigen::Vector3d& p0 : points_) {
+      const Eigen::Vector3d p = p0 + offset_w;
+      const double sigma = p.z() * p.z() * disparity_sigma_px / kBf;
+      s.p_w.push_back(p * (1.0 + sigma * unit(rng_) / p.z()));  // error along the ray
+      s.sigma_m.push_back(sigma);
+    }
+    return s;
+  }
+
+ private:
+  std::mt19937_64 rng_;
+  std::vector<Eigen::Vector3d> points_;
+  cv::Mat descriptors_;
+};
+
+// Frames until the track first says dynamic (-1: never) for an object that stands still for
+// `still_frames` and then moves at `velocity` (m/s).
+int FramesToDetect(const Eigen::Vector3d& velocity, int still_frames, int frames, uint64_t seed) {
+  SyntheticObject obj(40, seed);
+  ObjectMotionTrack track;
+  const AdaptiveDynamicSettings s;
+  for (int k = 0; k < frames; ++k) {
+    const double moving_s = std::max(0, k - still_frames) * kFrameNs * 1e-9;
+    if (track.Add(obj.Observe(k * kFrameNs, velocity * moving_s), s)) return k - still_frames;
+  }
+  return -1;
+}
+
+TEST(ObjectMotion, StaticObjectIsNeverDynamic) {
+  for (uint64_t seed = 1; seed <= 5; ++seed) EXPECT_EQ(FramesToDetect(Eigen::Vector3d::Zero(), 0, 400, seed), -1) << seed;
+}
+
+TEST(ObjectMotion, WalkingPersonWithinAFewFrames) {
+  const int frames = FramesToDetect({0.8, 0, 0}, 20, 100, 3);  // 0.8 m/s across the view
+  EXPECT_GE(frames, 1);
+  EXPECT_LE(frames, 3);
+}
+
+TEST(ObjectMotion, SlowBoxWithinHalfASecond) {
+  const int frames = FramesToDetect({0.1, 0, 0}, 20, 100, 4);  // 0.1 m/s, the pushed crate
+  EXPECT_GE(frames, 1);
+  EXPECT_LE(frames, 10);  // 0.5 s at 20 Hz
+}
+
+TEST(ObjectMotion, ApproachingAndTangentialMotionBothCount) {
+  // Towards the camera (mask depth shrinks, the norm of world positions hardly changes for an
+  // object circling the origin): both are world displacements.
+  EXPECT_GT(FramesToDetect({0, 0, -0.3}, 20, 100, 5), 0);
+  EXPECT_GT(FramesToDetect({0.2, 0.0, 0.0}, 20, 100, 6), 0);
+}
+
+TEST(ObjectMotion, ReleasedAfterLagPlusHold) {
+  SyntheticObject obj(40, 7);
+  ObjectMotionTrack track;
+  const AdaptiveDynamicSettings s;  // lag 1 s, hold 1 s
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  int k = 0;
+  for (; k < 40; ++k) {  // 2 s at 0.5 m/s
+    offset.x() = 0.5 * k * kFrameNs * 1e-9;
+    track.Add(obj.Observe(k * kFrameNs, offset), s);
+  }
+  ASSERT_TRUE(track.Add(obj.Observe(k++ * kFrameNs, offset), s));
+  int released = -1;
+  for (int j = 0; j < 100; ++j, ++k) {
+    if (!track.Add(obj.Observe(k * kFrameNs, offset), s)) {
+      released = j;
+      break;
+    }
+  }
+  // Still for one lag before the displacement falls below threshold, then one hold.
+  EXPECT_GE(released, 30);
+  EXPECT_LE(released, 42);
+}
+
+TEST(ObjectMotion, TooFewMatchesAreNotJudged) {
+  SyntheticObject obj(5, 8);
+  AdaptiveDynamicSettings s;
+  s.min_matches = 6;
+  const MotionMeasurement m = MeasureMotion(obj.Observe(0, {0, 0, 0}), obj.Observe(kFrameNs, {1, 0, 0}), s);
+  EXPECT_FALSE(m.judged);
+  EXPECT_FALSE(m.moving);
+}
+
+TEST(ObjectMotion, MedianDisplacementResistsMismatches) {
+  SyntheticObject obj(40, 9);
+  const AdaptiveDynamicSettings s;
+  ObjectSnapshot a = obj.Observe(0, {0, 0, 0}, 0.0), b = obj.Observe(kFrameNs, {0.05, 0, 0}, 0.0);
+  for (int i = 0; i < 15; ++i) b.p_w[static_cast<size_t>(i)] += Eigen::Vector3d(0, 3.0, 0);  // 15 of 40 wrong
+  const MotionMeasurement m = MeasureMotion(a, b, s);
+  EXPECT_EQ(m.matches, 40);
+  EXPECT_NEAR(m.displacement_w.x(), 0.05, 1e-9);
+  EXPECT_NEAR(m.displacement_w.y(), 0.0, 1e-9);
+}
+
+// The stage on hand-made frames: one person (id 3) and one box (id 5), 30 features each, plus
+// 30 background features and 10 on furniture (id 7).
+struct StageFixture {
+  StereoCamera cam;
+  SyntheticObject person{30, 11}, box{30, 12};
+  StageFixture() {
+    cam.width = 640;
+    cam.height = 480;
+    cam.fx = cam.fy = 457;
+    cam.cx = 319.5;
+    cam.cy = 239.5;
+    cam.bf = kBf;
+  }
+  static std::vector<SegmentInstance> Instances(bool with_person = true) {
+    std::vector<SegmentInstance> v = {{0, Category::kBackground, "background"}, {5, Category::kBox, "crate"},
+                                      {7, Category::kFurniture, "table"}};
+    if (with_person) v.push_back({3, Category::kPerson, "erin"});
+    return v;
+  }
+  // Features of the two objects (moved by the offsets) with exact depth from the points.
+  FrameFeatures Features(int64_t t_ns, const Eigen::Vector3d& person_w, const Eigen::Vector3d& box_w) {
+    FrameFeatures f;
+    std::vector<cv::Mat> rows;
+    auto add = [&](const ObjectSnapshot& s, uint16_t id) {
+      for (size_t i = 0; i < s.size(); ++i) {
+        const Eigen::Vector2d uv = cam.Project(s.p_w[i]);
+        f.keypoints.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()), 8.f);
+        f.depth.push_back(static_cast<float>(s.p_w[i].z()));
+        f.u_right.push_back(static_cast<float>(uv.x() - cam.bf / s.p_w[i].z()));
+        f.object.push_back(id);
+        rows.push_back(s.descriptors.row(static_cast<int>(i)));
+      }
+    };
+    add(person.Observe(t_ns, person_w), 3);
+    add(box.Observe(t_ns, box_w), 5);
+    for (int i = 0; i < 40; ++i) {
+      f.keypoints.emplace_back(10.f + i, 10.f, 8.f);
+      f.depth.push_back(3.f);
+      f.u_right.push_back(5.f + i);
+      f.object.push_back(i < 10 ? 7 : 0);
+      rows.push_back(cv::Mat::zeros(1, 32, CV_8U));
+    }
+    cv::vconcat(rows, f.descriptors);
+    return f;
+  }
+};
+
+int Dropped(const std::vector<bool>& keep) { return static_cast<int>(std::count(keep.begin(), keep.end(), false)); }
+
+TEST(DynamicObjects, AdaptiveDropsTheWalkerAndKeepsTheStandingBox) {
+  StageFixture fx;
+  SlamSettings settings;
+  DynamicObjects stage(settings, fx.cam);
+  ASSERT_EQ(stage.method(), DynamicMethod::kAdaptive);
+  int first_drop = -1;
+  for (int k = 0; k < 40; ++k) {
+    const Eigen::Vector3d person(k < 10 ? 0.0 : 0.8 * (k - 10) * kFrameNs * 1e-9, 0, 0);
+    const FrameFeatures f = fx.Features(k * kFrameNs, person, Eigen::Vector3d::Zero());
+    const std::vector<bool> keep = stage.KeepMask(f, StageFixture::Instances());
+    ASSERT_EQ(stage.reports().size(), 2u);  // person and box; furniture is not judged
+    if (Dropped(keep) > 0 && first_drop < 0) first_drop = k;
+    if (k >= 14) {
+      EXPECT_EQ(Dropped(keep), 30) << k;  // exactly the person's features
+      EXPECT_EQ(stage.reports()[0].dropped, 30);
+      EXPECT_EQ(stage.reports()[1].dropped, 0);
+    }
+    stage.Update(k * kFrameNs, f, cv::Mat(), Eigen::Isometry3d::Identity(), {});
+  }
+  EXPECT_GE(first_drop, 11);
+  EXPECT_LE(first_drop, 14);
+}
+
+TEST(DynamicObjects, TurnedDynamicIsReportedOnceAndSurvivesAMissedDetection) {
+  StageFixture fx;
+  DynamicObjects stage(SlamSettings{}, fx.cam);
+  int turned_count = 0;
+  for (int k = 0; k < 30; ++k) {
+    const Eigen::Vector3d person(0.8 * k * kFrameNs * 1e-9, 0, 0);
+    const FrameFeatures f = fx.Features(k * kFrameNs, person, Eigen::Vector3d::Zero());
+    const bool missed = k == 20;  // the detector misses the person for a frame
+    stage.KeepMask(f, StageFixture::Instances(!missed));
+    for (uint16_t id : stage.Update(k * kFrameNs, f, cv::Mat(), Eigen::Isometry3d::Identity(), {})) {
+      EXPECT_EQ(id, 3);
+      ++turned_count;
+    }
+    if (k == 21) {
+      ASSERT_EQ(stage.reports().size(), 2u);
+      EXPECT_TRUE(stage.reports()[0].dynamic);  // history kept through the miss
+    }
+  }
+  EXPECT_EQ(turned_count, 1);
+}
+
+TEST(DynamicObjects, SemanticDropsEveryMovableNoneDropsNothing) {
+  StageFixture fx;
+  SlamSettings semantic;
+  semantic.dynamic.method = "semantic";
+  DynamicObjects s(semantic, fx.cam);
+  const FrameFeatures f = fx.Features(0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  EXPECT_EQ(Dropped(s.KeepMask(f, StageFixture::Instances())), 60);  // person + box, not the furniture
+
+  SlamSettings none;
+  none.dynamic.method = "none";
+  DynamicObjects n(none, fx.cam);
+  for (int k = 0; k < 30; ++k) {
+    const FrameFeatures g = fx.Features(k * kFrameNs, Eigen::Vector3d(0.05 * k, 0, 0), Eigen::Vector3d::Zero());
+    EXPECT_EQ(Dropped(n.KeepMask(g, StageFixture::Instances())), 0);
+    EXPECT_TRUE(n.Update(k * kFrameNs, g, cv::Mat(), Eigen::Isometry3d::Identity(), {}).empty());
+  }
+  SlamSettings visual;
+  visual.mode = "visual";
+  EXPECT_EQ(DynamicMethodOf(visual), DynamicMethod::kNone);
+}
+
+TEST(DynamicObjects, EgoMotionDoesNotMakeStaticObjectsDynamic) {
+  // The camera moves 0.5 m/s sideways and turns; the objects stand still in the world. Features
+  // are seen from the moving camera and judged with its (true) pose.
+  StageFixture fx;
+  DynamicObjects stage(SlamSettings{}, fx.cam);
+  for (int k = 0; k < 60; ++k) {
+    const double t = k * kFrameNs * 1e-9;
+    Eigen::Isometry3d T_w_c = Eigen::Isometry3d::Identity();
+    T_w_c.translation() = Eigen::Vector3d(0.5 * t, 0, -0.3 * t);
+    T_w_c.linear() = Eigen::AngleAxisd(0.2 * t, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    // World points seen in the camera: transform the features' 3D points into the camera frame.
+    FrameFeatures f = fx.Features(k * kFrameNs, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+    for (size_t i = 0; i < 60; ++i) {
+      const Eigen::Vector3d p_w = fx.cam.Unproject(f.keypoints[i].pt.x, f.keypoints[i].pt.y, f.depth[i]);
+      const Eigen::Vector3d p_c = T_w_c.inverse() * p_w;
+      const Eigen::Vector2d uv = fx.cam.Project(p_c);
+      f.keypoints[i].pt = cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y()));
+      f.depth[i] = static_cast<float>(p_c.z());
+    }
+    EXPECT_EQ(Dropped(stage.KeepMask(f, StageFixture::Instances())), 0) << k;
+    stage.Update(k * kFrameNs, f, cv::Mat(), T_w_c.inverse(), {});
+  }
+}
+
+}  // namespace
+}  // namespace viqu::slam
