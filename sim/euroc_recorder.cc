@@ -12,6 +12,7 @@
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "sim/depth_quantisation.h"
+#include "sim/tum_recorder.h"
 
 namespace viqu::sim {
 namespace {
@@ -21,7 +22,12 @@ namespace fs = std::filesystem;
 const char* const kJointNames[kNumJoints] = {"FL_hip", "FL_knee", "FR_hip", "FR_knee",
                                              "BL_hip", "BL_knee", "BR_hip", "BR_knee"};
 const char* const kFootNames[kNumLegs] = {"FL", "FR", "BL", "BR"};
-constexpr double kDepthUnitM = 0.001;  // depth0 PNG unit: millimetres
+// depth0 PNG unit: 1/5000 m, the steps that the live run quantises its depth to (TUM's depth
+// scale, apps/run_scenario.cc), so that a recorded depth image replays bit for bit and an rgbd
+// replay of the recording tracks exactly as the live run did. The range, 13.1 m, is the live
+// depth's own: beyond it there is no depth live either.
+constexpr double kDepthStepsPerM = TumRecorder::kDepthScale;
+constexpr double kDepthUnitM = 1.0 / kDepthStepsPerM;
 
 std::string Fmt(const char* format, double v) {
   char buf[64];
@@ -88,7 +94,11 @@ EurocRecorder::EurocRecorder(const std::string& dataset_dir, const EurocRig& rig
   cam0_ = OpenCsv("cam0", image_header);
   cam1_ = OpenCsv("cam1", image_header);
   if (rig_.camera.depth) depth0_ = OpenCsv("depth0", image_header);
-  if (rig_.camera.segmentation) seg0_ = OpenCsv("seg0", image_header);
+  if (rig_.camera.segmentation) {
+    seg0_ = OpenCsv("seg0", image_header);
+    seg0_frames_.file = std::make_unique<AtomicOutputFile>(mav0_ + "/seg0/frame_instances.csv");
+    seg0_frames_.file->Write("#timestamp [ns],id,category,name\n");
+  }
   imu0_ = OpenCsv("imu0",
                   "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
                   "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n");
@@ -108,7 +118,7 @@ EurocRecorder::~EurocRecorder() {
   if (finished_) return;
   writer_.reset();  // stop writing images into the folder that is about to go
   // Close (and delete) the temporary CSV files first, then the whole partial folder.
-  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &imu0_, &joints0_, &gt0_}) s->file.reset();
+  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &imu0_, &joints0_, &gt0_}) s->file.reset();
   std::error_code ec;
   fs::remove_all(partial_dir_, ec);
 }
@@ -154,14 +164,21 @@ void EurocRecorder::AddFrame(const StereoFrame& frame) {
   WriteImage("cam1", &cam1_, frame.t_ns, bgr);
 
   if (rig_.camera.depth && !frame.left_depth_m.empty()) {
-    WriteImage("depth0", &depth0_, frame.t_ns, DepthToSteps(frame.left_depth_m, 1.0 / kDepthUnitM));
+    WriteImage("depth0", &depth0_, frame.t_ns, DepthToSteps(frame.left_depth_m, kDepthStepsPerM));
   }
   if (rig_.camera.segmentation && !frame.left_instance_id.empty()) {
     if (frame.left_instance_id.type() != CV_16U) throw RunError("EurocRecorder: instance ids must be CV_16U");
     WriteImage("seg0", &seg0_, frame.t_ns, frame.left_instance_id);
+    std::string rows;
     for (const SegmentInstance& inst : frame.instances) {
-      instances_.insert({inst.id, CategoryName(inst.category), inst.name});
+      rows += RowStamp(frame.t_ns) + "," + std::to_string(inst.id) + "," + CategoryName(inst.category) + "," +
+              inst.name + "\n";
+      SeenInstance& seen = instances_[inst.id];
+      if (seen.frames.empty()) seen.name = inst.name;
+      ++seen.frames[inst.category];
+      seen.first_ns.emplace(inst.category, frame.t_ns);
     }
+    seg0_frames_.file->Write(rows);
   }
 }
 
@@ -217,10 +234,17 @@ void EurocRecorder::WriteSensorFiles() const {
     WriteFileAtomic(m + "seg0/sensor.yaml",
                     CameraYaml("viqu left camera instance segmentation", rig_.T_body_cam0, rig_,
                                "\n# Segmentation images: 16-bit PNG of instance ids; 0 = static background.\n"
-                               "encoding: 16UC1\ninstances: instances.csv  # id, category, name\n"));
+                               "encoding: 16UC1\ninstances: instances.csv  # id, category, name\n"
+                               "frame_instances: frame_instances.csv  # timestamp [ns], id, category, name\n"));
     std::string csv = "#id,category,name\n";
-    for (const auto& inst : instances_) {
-      csv += std::to_string(std::get<0>(inst)) + "," + std::get<1>(inst) + "," + std::get<2>(inst) + "\n";
+    for (const auto& [id, seen] : instances_) {
+      // The category reported most often; of equally frequent ones, the one seen first.
+      Category best = seen.frames.begin()->first;
+      for (const auto& [category, n] : seen.frames) {
+        const int best_n = seen.frames.at(best);
+        if (n > best_n || (n == best_n && seen.first_ns.at(category) < seen.first_ns.at(best))) best = category;
+      }
+      csv += std::to_string(id) + "," + CategoryName(best) + "," + seen.name + "\n";
     }
     WriteFileAtomic(m + "seg0/instances.csv", csv);
   }
@@ -255,7 +279,7 @@ void EurocRecorder::Finish() {
   if (finished_) return;
   writer_->Drain();
   WriteSensorFiles();
-  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &imu0_, &joints0_, &gt0_}) {
+  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &imu0_, &joints0_, &gt0_}) {
     if (s->file) s->file->Commit();
   }
   // Swap the finished folder into place; an old dataset under the final name is replaced.

@@ -1,10 +1,9 @@
 #pragma once
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <memory>
-#include <set>
 #include <string>
-#include <tuple>
 
 #include <Eigen/Geometry>
 
@@ -33,11 +32,22 @@ struct EurocRig {
 //   DATASET/mav0/body.yaml
 //   DATASET/mav0/cam0/{data/<t_ns>.png, data.csv, sensor.yaml}     left RGB
 //   DATASET/mav0/cam1/{data/<t_ns>.png, data.csv, sensor.yaml}     right RGB
-//   DATASET/mav0/depth0/{data/<t_ns>.png, data.csv, sensor.yaml}   left depth, 16-bit PNG, mm
-//   DATASET/mav0/seg0/{data/<t_ns>.png, data.csv, sensor.yaml, instances.csv}  left instance ids
+//   DATASET/mav0/depth0/{data/<t_ns>.png, data.csv, sensor.yaml}   left depth, 16-bit PNG, 1/5000 m
+//                                                                  (sensor.yaml depth_unit_m 0.0002)
+//   DATASET/mav0/seg0/{data/<t_ns>.png, data.csv, sensor.yaml, instances.csv,
+//                      frame_instances.csv}                        left instance ids
 //   DATASET/mav0/imu0/{data.csv, sensor.yaml}
 //   DATASET/mav0/joints0/{data.csv, sensor.yaml}                   encoders and foot contacts
 //   DATASET/mav0/state_groundtruth_estimate0/{data.csv, sensor.yaml}  trunk (IMU) pose in world
+//
+// seg0 describes the ids twice. instances.csv ("id,category,name", the format of a masks folder,
+// docs/MASKS.md) has one row per id seen in the run: its name as first seen and the category it
+// was reported with most often (ties: the one seen first); a detector model with wrong
+// categories (sensors.segmentation.wrong_category_rate) reports one id under several.
+// frame_instances.csv ("timestamp [ns],id,category,name") has, for every segmentation image,
+// one row per entry of the frame's StereoFrame::instances as given (background and robot
+// included, in the frame's order), so that a replay gives the dynamic-object stage exactly the
+// instance list that the live run gave it; a frame whose list was empty has no row.
 //
 // Everything is written under DATASET.partial/ (CSV files through temporary names) and renamed
 // onto DATASET by Finish(); destroyed without Finish(), the recorder removes DATASET.partial.
@@ -77,8 +87,14 @@ class EurocRecorder {
   std::string mav0_;         // DATASET.partial/mav0
   EurocRig rig_;
   CsvStream cam0_, cam1_, depth0_, seg0_, imu0_, joints0_, gt0_;
-  // Instances seen in the segmentation: (id, category, name), written to seg0/instances.csv.
-  std::set<std::tuple<uint16_t, std::string, std::string>> instances_;
+  CsvStream seg0_frames_;    // seg0/frame_instances.csv
+  // An id seen in the segmentation, for seg0/instances.csv.
+  struct SeenInstance {
+    std::string name;                       // as first seen
+    std::map<Category, int> frames;         // frames reported under each category
+    std::map<Category, int64_t> first_ns;   // stamp of the first frame under each category (ns)
+  };
+  std::map<uint16_t, SeenInstance> instances_;
   std::unique_ptr<ImageWriteQueue> writer_ = std::make_unique<ImageWriteQueue>();  // PNG encoding
   bool finished_ = false;    // Finish() succeeded
 };

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <set>
@@ -22,6 +23,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/errors.h"
+#include "sim/depth_quantisation.h"
 #include "sim/euroc_recorder.h"
 #include "sim/trajectory_writer.h"
 #include "sim/tum_recorder.h"
@@ -61,6 +63,11 @@ void WriteText(const fs::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);
   out << text;
   ASSERT_TRUE(out.good()) << p;
+}
+
+std::string ReadAllText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 // Expects `f` to throw InputError whose message contains every one of `parts`.
@@ -185,7 +192,7 @@ void ExpectSameFrames(DatasetReader* reader, const ViquRecording& rec) {
         }
       }
     }
-    EXPECT_LE(worst, 0.0005 + 1e-6);  // millimetre PNG: half a unit
+    EXPECT_LE(worst, 0.0001 + 1e-6);  // PNG in steps of 1/5000 m: half a step
     EXPECT_EQ(MaxAbsDiff(f.left_instance_id, want.left_instance_id), 0.0);
     ASSERT_EQ(f.instances.size(), want.instances.size());
     std::vector<SegmentInstance> sorted = want.instances;
@@ -279,6 +286,135 @@ TEST(ViquDatasetReader, RejectsARecordingThatIsNotRectified) {
   ASSERT_TRUE(reader.Next(&f));
   EXPECT_TRUE(f.left_depth_m.empty());
   EXPECT_TRUE(f.left_instance_id.empty());
+}
+
+// Depth quantised as the live run quantises it (sim::QuantiseDepth, TUM's 1/5000 m) comes back
+// from depth0 bit for bit, so an rgbd replay of a recording sees the live depth.
+TEST(ViquDatasetReader, LiveQuantisedDepthReadsBackBitForBit) {
+  TempDir tmp;
+  sim::EurocRig rig;
+  rig.camera.width = kW;
+  rig.camera.height = kH;
+  rig.camera.segmentation = false;
+  rig.intrinsics = {kW, kH, 30, 30, 16, 12};
+  rig.T_body_cam0 = CameraInBody();
+  rig.T_body_cam1 = rig.T_body_cam0 * Eigen::Translation3d(0.04, 0, 0);
+  StereoFrame f;
+  f.t_ns = 7;
+  f.left_rgb = RandomRgb(kW, kH, 1);
+  f.right_rgb = RandomRgb(kW, kH, 2);
+  f.left_depth_m = RandomDepth(kW, kH, 3);
+  f.left_depth_m.at<float>(1, 1) = 13.5f;  // beyond 65535 / 5000 m: no depth, live as recorded
+  sim::QuantiseDepth(&f.left_depth_m, sim::TumRecorder::kDepthScale);
+  EXPECT_EQ(f.left_depth_m.at<float>(1, 1), 0.0f);
+  {
+    sim::EurocRecorder recorder((tmp.path() / "dataset").string(), rig);
+    recorder.AddFrame(f);
+    recorder.Finish();
+  }
+  ViquDatasetReader reader((tmp.path() / "dataset").string());
+  StereoFrame got;
+  ASSERT_TRUE(reader.Next(&got));
+  ASSERT_EQ(got.left_depth_m.type(), CV_32F);
+  EXPECT_EQ(MaxAbsDiff(got.left_depth_m, f.left_depth_m), 0.0);
+}
+
+// A detector model with wrong categories reports one id under several categories: the reader
+// gives each frame the list the recorder was given for it (seg0/frame_instances.csv), not one
+// category per id.
+TEST(ViquDatasetReader, GivesEachFrameItsOwnInstanceList) {
+  TempDir tmp;
+  sim::EurocRig rig;
+  rig.camera.width = kW;
+  rig.camera.height = kH;
+  rig.intrinsics = {kW, kH, 30, 30, 16, 12};
+  rig.T_body_cam0 = CameraInBody();
+  rig.T_body_cam1 = rig.T_body_cam0 * Eigen::Translation3d(0.04, 0, 0);
+  const Category category_of_5[] = {Category::kPerson, Category::kFurniture, Category::kBox};
+  std::vector<StereoFrame> frames;
+  {
+    sim::EurocRecorder recorder((tmp.path() / "dataset").string(), rig);
+    for (int i = 0; i < 4; ++i) {
+      StereoFrame f;
+      f.t_ns = 1000 + i;
+      f.left_rgb = RandomRgb(kW, kH, 1 + i);
+      f.right_rgb = RandomRgb(kW, kH, 11 + i);
+      f.left_instance_id = cv::Mat(kH, kW, CV_16U, cv::Scalar(0));
+      if (i < 3) {
+        f.left_instance_id(cv::Rect(1, 1, 4, 4)).setTo(5);
+        f.left_instance_id(cv::Rect(10, 1, 4, 4)).setTo(65535);
+        // Spurious mask first, then the real one, then the background: not in order of id.
+        f.instances = {{65535, Category::kBall, "spurious_" + std::to_string(i + 1)},
+                       {5, category_of_5[i], "alice"},
+                       {0, Category::kBackground, "background"}};
+      }  // frame 3: an empty mask without instances (latency)
+      recorder.AddFrame(f);
+      frames.push_back(f);
+    }
+    recorder.Finish();
+  }
+  const fs::path seg0 = tmp.path() / "dataset" / "mav0" / "seg0";
+  {
+    ViquDatasetReader reader((tmp.path() / "dataset").string());
+    StereoFrame f;
+    for (int i = 0; i < 4; ++i) {
+      ASSERT_TRUE(reader.Next(&f));
+      EXPECT_EQ(MaxAbsDiff(f.left_instance_id, frames[i].left_instance_id), 0.0);
+      if (i == 3) {
+        EXPECT_TRUE(f.instances.empty());
+        continue;
+      }
+      ASSERT_EQ(f.instances.size(), 3u) << i;
+      EXPECT_EQ(f.instances[0].id, 0);
+      EXPECT_EQ(f.instances[1].id, 5);
+      EXPECT_EQ(f.instances[1].category, category_of_5[i]) << i;
+      EXPECT_EQ(f.instances[1].name, "alice");
+      EXPECT_EQ(f.instances[2].id, 65535);
+      EXPECT_EQ(f.instances[2].category, Category::kBall);
+      EXPECT_EQ(f.instances[2].name, "spurious_" + std::to_string(i + 1));
+    }
+    EXPECT_FALSE(reader.Next(&f));
+  }
+  // A recording without frame_instances.csv (made before it existed): instances.csv rows of the
+  // ids in the image, one category per id (person: first of three equally frequent ones).
+  const std::string per_frame = ReadAllText(seg0 / "frame_instances.csv");
+  fs::remove(seg0 / "frame_instances.csv");
+  {
+    ViquDatasetReader reader((tmp.path() / "dataset").string());
+    StereoFrame f;
+    for (int i = 0; i < 4; ++i) {
+      ASSERT_TRUE(reader.Next(&f));
+      ASSERT_EQ(f.instances.size(), i < 3 ? 3u : 1u) << i;  // frame 3: the background alone
+      if (i == 3) continue;
+      EXPECT_EQ(f.instances[1].category, Category::kPerson) << i;
+      EXPECT_EQ(f.instances[2].name, "spurious_1") << i;
+    }
+  }
+  // An id in the image that the frame's list lacks: InputError naming the image and the list.
+  WriteText(seg0 / "frame_instances.csv", per_frame);
+  cv::Mat ids = frames[1].left_instance_id.clone();
+  ids.at<uint16_t>(20, 30) = 77;
+  ASSERT_TRUE(cv::imwrite((seg0 / "data" / "1001.png").string(), ids));
+  {
+    ViquDatasetReader reader((tmp.path() / "dataset").string());
+    StereoFrame f;
+    ASSERT_TRUE(reader.Next(&f));
+    ExpectInputError([&] { reader.Next(&f); }, {(seg0 / "data" / "1001.png").string(), "instance id 77", "x=30, y=20",
+                                                 "frame_instances.csv"});
+  }
+  // Malformed lists: FILE:LINE.
+  WriteText(seg0 / "frame_instances.csv", "#timestamp [ns],id,category,name\n1000,5,person,alice\n1000,5,box,alice\n");
+  ExpectInputError([&] { ViquDatasetReader r((tmp.path() / "dataset").string()); },
+                   {"frame_instances.csv:3", "id 5 is listed twice for timestamp 1000"});
+  WriteText(seg0 / "frame_instances.csv", "1001,5,person,alice\n1000,5,person,alice\n");
+  ExpectInputError([&] { ViquDatasetReader r((tmp.path() / "dataset").string()); },
+                   {"frame_instances.csv:2", "timestamp 1000 follows 1001"});
+  WriteText(seg0 / "frame_instances.csv", "1000,5,dog,alice\n");
+  ExpectInputError([&] { ViquDatasetReader r((tmp.path() / "dataset").string()); },
+                   {"frame_instances.csv:1", "unknown category 'dog'"});
+  WriteText(seg0 / "frame_instances.csv", "1000,5,person\n");
+  ExpectInputError([&] { ViquDatasetReader r((tmp.path() / "dataset").string()); },
+                   {"frame_instances.csv:1", "expected 'timestamp [ns],id,category,name'"});
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -57,7 +57,7 @@ class EurocRecorderTest : public ::testing::Test {
     f.right_rgb = cv::Mat(24, 32, CV_8UC3, cv::Scalar(0, 0, 255));  // pure blue in RGB order
     f.left_depth_m = cv::Mat(24, 32, CV_32F, cv::Scalar(1.2344f));
     f.left_depth_m.at<float>(0, 0) = std::numeric_limits<float>::quiet_NaN();
-    f.left_depth_m.at<float>(0, 1) = 100.0f;  // beyond the 16-bit millimetre range
+    f.left_depth_m.at<float>(0, 1) = 100.0f;  // beyond the 16-bit range (13.107 m)
     f.left_instance_id = cv::Mat(24, 32, CV_16U, cv::Scalar(0));
     f.left_instance_id.at<uint16_t>(5, 6) = 300;
     f.instances = {{0, Category::kBackground, "background"}, {300, Category::kPerson, "person:alice"}};
@@ -104,14 +104,16 @@ TEST_F(EurocRecorderTest, WritesTheEurocLayoutOnlyOnFinish) {
   const fs::path partial = dir_ / "dataset.partial" / "mav0";
   ASSERT_TRUE(fs::is_directory(partial));
   for (const char* f : {"cam0/data.csv", "cam1/data.csv", "imu0/data.csv", "joints0/data.csv",
-                        "state_groundtruth_estimate0/data.csv", "cam0/sensor.yaml", "seg0/instances.csv"}) {
+                        "state_groundtruth_estimate0/data.csv", "cam0/sensor.yaml", "seg0/instances.csv",
+                        "seg0/frame_instances.csv"}) {
     EXPECT_FALSE(fs::exists(partial / f)) << f;
   }
   rec.Finish();
   EXPECT_FALSE(fs::exists(dir_ / "dataset.partial"));
 
   for (const char* f : {"body.yaml", "cam0/sensor.yaml", "cam1/sensor.yaml", "depth0/sensor.yaml",
-                        "seg0/sensor.yaml", "seg0/instances.csv", "imu0/sensor.yaml", "joints0/sensor.yaml",
+                        "seg0/sensor.yaml", "seg0/instances.csv", "seg0/frame_instances.csv", "imu0/sensor.yaml",
+                        "joints0/sensor.yaml",
                         "state_groundtruth_estimate0/sensor.yaml"}) {
     EXPECT_TRUE(fs::is_regular_file(mav0 / f)) << f;
   }
@@ -146,6 +148,53 @@ TEST_F(EurocRecorderTest, WritesTheEurocLayoutOnlyOnFinish) {
   EXPECT_EQ(inst[0], "#id,category,name");
   EXPECT_EQ(inst[1], "0,background,background");
   EXPECT_EQ(inst[2], "300,person,person:alice");
+  const std::vector<std::string> per_frame = ReadLines(mav0 / "seg0/frame_instances.csv");
+  ASSERT_EQ(per_frame.size(), 7u);
+  EXPECT_EQ(per_frame[0], "#timestamp [ns],id,category,name");
+  EXPECT_EQ(per_frame[1], "0,0,background,background");
+  EXPECT_EQ(per_frame[2], "0,300,person,person:alice");
+  EXPECT_EQ(per_frame[6], "100000000,300,person,person:alice");
+}
+
+// A detector with wrong categories reports one id under several: every frame's list goes to
+// frame_instances.csv as given, and instances.csv keeps one row per id with the category reported
+// most often (of equally frequent ones, the one seen first) and the name first seen.
+TEST_F(EurocRecorderTest, PerFrameInstanceListsKeepEachFramesCategories) {
+  const fs::path dataset = dir_ / "dataset";
+  EurocRecorder rec(dataset.string(), rig_);
+  // id 300: box first, then person twice (most often), then ball.
+  const Category category_300[] = {Category::kBox, Category::kPerson, Category::kPerson, Category::kPerson,
+                                   Category::kBall};
+  for (int i = 0; i < 5; ++i) {
+    StereoFrame f = Frame(i * 50000000);
+    f.instances = {{300, category_300[i], "person:alice"}, {0, Category::kBackground, "background"}};
+    f.left_instance_id.at<uint16_t>(7, 7) = 9;
+    // id 9: ball in frame 0, box in frame 1 (a tie: the first seen wins), then not seen.
+    if (i == 0) f.instances.push_back({9, Category::kBall, "ball_9"});
+    if (i == 1) f.instances.push_back({9, Category::kBox, "ball_9 renamed"});
+    if (i == 2) f.instances.clear();  // latency: nothing has arrived
+    rec.AddFrame(f);
+  }
+  rec.Finish();
+  const fs::path seg0 = dataset / "mav0/seg0";
+  EXPECT_EQ(ReadLines(seg0 / "instances.csv"),
+            (std::vector<std::string>{"#id,category,name", "0,background,background", "9,ball,ball_9",
+                                      "300,person,person:alice"}));
+  EXPECT_EQ(ReadLines(seg0 / "frame_instances.csv"),
+            (std::vector<std::string>{"#timestamp [ns],id,category,name",
+                                      "0,300,box,person:alice",
+                                      "0,0,background,background",
+                                      "0,9,ball,ball_9",
+                                      "50000000,300,person,person:alice",
+                                      "50000000,0,background,background",
+                                      "50000000,9,box,ball_9 renamed",
+                                      "150000000,300,person,person:alice",
+                                      "150000000,0,background,background",
+                                      "200000000,300,ball,person:alice",
+                                      "200000000,0,background,background"}));
+  const YAML::Node y = YAML::LoadFile((seg0 / "sensor.yaml").string());
+  EXPECT_EQ(y["instances"].as<std::string>(), "instances.csv");
+  EXPECT_EQ(y["frame_instances"].as<std::string>(), "frame_instances.csv");
 }
 
 TEST_F(EurocRecorderTest, SensorYamlHoldsIntrinsicsAndExtrinsics) {
@@ -173,7 +222,7 @@ TEST_F(EurocRecorderTest, SensorYamlHoldsIntrinsicsAndExtrinsics) {
     }
   }
   const YAML::Node d = YAML::LoadFile((dataset / "mav0/depth0/sensor.yaml").string());
-  EXPECT_DOUBLE_EQ(d["depth_unit_m"].as<double>(), 0.001);
+  EXPECT_EQ(d["depth_unit_m"].as<double>(), 1.0 / 5000);  // the live depth's steps, exactly
   EXPECT_EQ(d["encoding"].as<std::string>(), "16UC1");
   const YAML::Node imu = YAML::LoadFile((dataset / "mav0/imu0/sensor.yaml").string());
   EXPECT_EQ(imu["sensor_type"].as<std::string>(), "imu");
@@ -195,9 +244,9 @@ TEST_F(EurocRecorderTest, ImagesKeepColourDepthAndIds) {
   EXPECT_EQ(right.at<cv::Vec3b>(10, 10), cv::Vec3b(255, 0, 0)) << "blue in RGB must read back as blue in BGR";
   const cv::Mat depth = cv::imread((mav0 / "depth0/data/0.png").string(), cv::IMREAD_UNCHANGED);
   ASSERT_EQ(depth.type(), CV_16U);
-  EXPECT_EQ(depth.at<uint16_t>(5, 5), 1234);
+  EXPECT_EQ(depth.at<uint16_t>(5, 5), 6172);  // 1.2344 m in steps of 1/5000 m
   EXPECT_EQ(depth.at<uint16_t>(0, 0), 0) << "NaN depth is written as 0";
-  EXPECT_EQ(depth.at<uint16_t>(0, 1), 0) << "depth beyond 65.535 m is written as 0";
+  EXPECT_EQ(depth.at<uint16_t>(0, 1), 0) << "depth beyond 65535 / 5000 m is written as 0";
   const cv::Mat seg = cv::imread((mav0 / "seg0/data/0.png").string(), cv::IMREAD_UNCHANGED);
   ASSERT_EQ(seg.type(), CV_16U);
   EXPECT_EQ(seg.at<uint16_t>(5, 6), 300);

@@ -1,6 +1,5 @@
 #include "slam/io/instance_mask_folder.h"
 
-#include <cstdint>
 #include <filesystem>
 
 #include "common/errors.h"
@@ -12,11 +11,10 @@ namespace viqu::io {
 namespace fs = std::filesystem;
 
 InstanceMaskFolder::InstanceMaskFolder(const std::string& dir)
-    : dir_(dir), csv_path_((fs::path(dir) / "instances.csv").string()), listed_(65536, false) {
+    : dir_(dir), csv_path_((fs::path(dir) / "instances.csv").string()) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir + ": masks folder not found");
   instances_ = ReadSegmentInstances(csv_path_);
-  for (const SegmentInstance& inst : instances_) listed_[inst.id] = true;
 }
 
 std::string InstanceMaskFolder::MaskPath(const std::string& image_path) const {
@@ -34,20 +32,8 @@ cv::Mat InstanceMaskFolder::Read(const std::string& image_path, const cv::Size& 
     throw InputError(path + ": mask is " + std::to_string(ids.cols) + "x" + std::to_string(ids.rows) +
                      ", its image is " + std::to_string(image_size.width) + "x" + std::to_string(image_size.height));
   }
-  CheckIdsListed(ids, path);
+  CheckIdsListed(ids, instances_, path, "in " + csv_path_);
   return ids;
-}
-
-void InstanceMaskFolder::CheckIdsListed(const cv::Mat& ids, const std::string& mask_path) const {
-  for (int v = 0; v < ids.rows; ++v) {
-    const uint16_t* row = ids.ptr<uint16_t>(v);
-    for (int u = 0; u < ids.cols; ++u) {
-      if (row[u] != 0 && !listed_[row[u]]) {
-        throw InputError(mask_path + ": instance id " + std::to_string(row[u]) + " (first at x=" + std::to_string(u) +
-                         ", y=" + std::to_string(v) + ") is not listed in " + csv_path_);
-      }
-    }
-  }
 }
 
 }  // namespace viqu::io

@@ -30,13 +30,9 @@ class InstanceMaskFolder {
   const std::vector<SegmentInstance>& instances() const { return instances_; }
 
  private:
-  // Throws InputError when `ids` holds a non-zero id that instances.csv does not list.
-  void CheckIdsListed(const cv::Mat& ids, const std::string& mask_path) const;
-
   std::string dir_;                         // the masks folder
   std::string csv_path_;                    // DIR/instances.csv
   std::vector<SegmentInstance> instances_;  // its rows
-  std::vector<bool> listed_;                // listed_[id]: instances.csv has the id (65536 entries)
 };
 
 }  // namespace viqu::io

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "common/errors.h"
 #include "slam/io/number_parsing.h"
 #include "slam/io/text_table_reader.h"
 
@@ -19,6 +20,25 @@ bool ParseCategory(const std::string& name, Category* out) {
   return false;
 }
 
+// Parses "id,category,name..." from fields[first...] into *out; false with *why on bad input.
+bool ParseInstance(const std::vector<std::string>& f, size_t first, SegmentInstance* out, std::string* why) {
+  int64_t id = 0;
+  if (!ParseInt64(f[first], &id) || id < 0 || id > 65535) {
+    *why = "id '" + f[first] + "' is not an integer in [0, 65535]";
+    return false;
+  }
+  out->id = static_cast<uint16_t>(id);
+  if (!ParseCategory(f[first + 1], &out->category)) {
+    *why = "unknown category '" + f[first + 1] + "'";
+    return false;
+  }
+  out->name = f[first + 2];
+  for (size_t i = first + 3; i < f.size(); ++i) out->name += "," + f[i];
+  return true;
+}
+
+bool ById(const SegmentInstance& a, const SegmentInstance& b) { return a.id < b.id; }
+
 }  // namespace
 
 std::vector<SegmentInstance> ReadSegmentInstances(const std::string& csv_path) {
@@ -31,20 +51,61 @@ std::vector<SegmentInstance> ReadSegmentInstances(const std::string& csv_path) {
     first_row = false;
     if (header) continue;  // a header row without '#', as CSV writers emit it
     if (f.size() < 3) table.Fail("expected 'id,category,name'");
-    int64_t id = 0;
-    if (!ParseInt64(f[0], &id) || id < 0 || id > 65535) table.Fail("id '" + f[0] + "' is not an integer in [0, 65535]");
     SegmentInstance inst;
-    inst.id = static_cast<uint16_t>(id);
-    if (!ParseCategory(f[1], &inst.category)) table.Fail("unknown category '" + f[1] + "'");
-    inst.name = f[2];
-    for (size_t i = 3; i < f.size(); ++i) inst.name += "," + f[i];
+    std::string why;
+    if (!ParseInstance(f, 0, &inst, &why)) table.Fail(why);
     for (const SegmentInstance& other : out) {
       if (other.id == inst.id) table.Fail("id " + f[0] + " is listed twice");
     }
     out.push_back(std::move(inst));
   }
-  std::sort(out.begin(), out.end(), [](const SegmentInstance& a, const SegmentInstance& b) { return a.id < b.id; });
+  std::sort(out.begin(), out.end(), ById);
   return out;
+}
+
+std::map<int64_t, std::vector<SegmentInstance>> ReadFrameInstances(const std::string& csv_path) {
+  TextTableReader table(csv_path, ',');
+  std::map<int64_t, std::vector<SegmentInstance>> out;
+  std::vector<std::string> f;
+  int64_t last_t_ns = 0;
+  std::vector<SegmentInstance>* list = nullptr;  // the current stamp's list
+  while (table.Next(&f)) {
+    if (f.size() < 4) table.Fail("expected 'timestamp [ns],id,category,name'");
+    int64_t t_ns = 0;
+    if (!ParseInt64(f[0], &t_ns)) table.Fail("timestamp '" + f[0] + "' is not an integer (ns)");
+    SegmentInstance inst;
+    std::string why;
+    if (!ParseInstance(f, 1, &inst, &why)) table.Fail(why);
+    if (list == nullptr || t_ns != last_t_ns) {
+      if (list != nullptr && t_ns < last_t_ns) {
+        table.Fail("timestamp " + f[0] + " follows " + std::to_string(last_t_ns) +
+                   " (rows must be in time order, those of one stamp together)");
+      }
+      list = &out[t_ns];
+      last_t_ns = t_ns;
+    }
+    for (const SegmentInstance& other : *list) {
+      if (other.id == inst.id) table.Fail("id " + f[1] + " is listed twice for timestamp " + f[0]);
+    }
+    list->push_back(std::move(inst));
+  }
+  for (auto& [t_ns, instances] : out) std::sort(instances.begin(), instances.end(), ById);
+  return out;
+}
+
+void CheckIdsListed(const cv::Mat& ids, const std::vector<SegmentInstance>& listed, const std::string& image_path,
+                    const std::string& list_what) {
+  std::vector<bool> known(65536, false);
+  for (const SegmentInstance& inst : listed) known[inst.id] = true;
+  for (int v = 0; v < ids.rows; ++v) {
+    const uint16_t* row = ids.ptr<uint16_t>(v);
+    for (int u = 0; u < ids.cols; ++u) {
+      if (row[u] != 0 && !known[row[u]]) {
+        throw InputError(image_path + ": instance id " + std::to_string(row[u]) + " (first at x=" + std::to_string(u) +
+                         ", y=" + std::to_string(v) + ") is not listed " + list_what);
+      }
+    }
+  }
 }
 
 std::vector<SegmentInstance> InstancesPresent(const cv::Mat& ids, const std::vector<SegmentInstance>& all) {

@@ -92,6 +92,11 @@ ViquDatasetReader::ViquDatasetReader(const std::string& dir, const std::string& 
     seg_files_ = ImageMap(mav0 / "seg0");
     const fs::path instances = mav0 / "seg0" / "instances.csv";
     if (fs::exists(instances, ec)) instances_ = ReadSegmentInstances(instances.string());
+    const fs::path per_frame = mav0 / "seg0" / "frame_instances.csv";
+    if (fs::exists(per_frame, ec)) {
+      frame_instances_path_ = per_frame.string();
+      frame_instances_ = ReadFrameInstances(frame_instances_path_);
+    }
   }
 
   const fs::path gt_tum = fs::path(run_dir) / "trajectory_gt.txt";
@@ -138,7 +143,14 @@ bool ViquDatasetReader::ReadFrame(const ImagePair& files, StereoFrame* frame, st
     if (frame->left_instance_id.size() != size) {
       throw InputError(it->second + ": segmentation image size differs from the camera's");
     }
-    frame->instances = InstancesPresent(frame->left_instance_id, instances_);
+    if (frame_instances_) {
+      const auto listed = frame_instances_->find(files.t_ns);
+      if (listed != frame_instances_->end()) frame->instances = listed->second;
+      CheckIdsListed(frame->left_instance_id, frame->instances, it->second,
+                     "for its stamp in " + frame_instances_path_);
+    } else {
+      frame->instances = InstancesPresent(frame->left_instance_id, instances_);
+    }
   }
   return true;
 }

@@ -16,8 +16,12 @@ namespace viqu::io {
 // cam0/sensor.yaml, the baseline from the cam0/cam1 T_BS (a recording that is not a rectified
 // pair is rejected: read it with --format euroc). depth0 (16-bit, depth_unit_m from its
 // sensor.yaml, default 1 mm) and seg0 (16-bit instance ids, instances.csv) are read when
-// present; a frame lacks them when their data.csv has no row with its stamp. A masks folder
-// (InstanceMaskFolder, docs/MASKS.md; masks named like the cam0 images) replaces seg0.
+// present; a frame lacks them when their data.csv has no row with its stamp. A frame's
+// `instances` are its rows of seg0/frame_instances.csv (the live frame's list, per-frame
+// categories included; in order of id) when the recording has that file, else the rows of
+// seg0/instances.csv whose ids occur in its image (recordings made before frame_instances.csv
+// existed). A masks folder (InstanceMaskFolder, docs/MASKS.md; masks named like the cam0 images)
+// replaces seg0.
 //
 // Ground truth of the left camera: RUN/trajectory_gt.txt when the run folder was given and has
 // it; otherwise mav0/state_groundtruth_estimate0 (trunk pose T_w_body) composed with cam0's
@@ -49,6 +53,9 @@ class ViquDatasetReader : public DatasetReader {
   std::map<int64_t, std::string> seg_files_;    // stamp (ns) -> seg0 image
   double depth_unit_m_ = 0.001;                 // depth0 PNG value -> metres
   std::vector<SegmentInstance> instances_;      // seg0/instances.csv
+  // seg0/frame_instances.csv by stamp (ns), when the recording has it.
+  std::optional<std::map<int64_t, std::vector<SegmentInstance>>> frame_instances_;
+  std::string frame_instances_path_;            // that file
   std::optional<InstanceMaskFolder> masks_;     // --masks (then seg0 is not read)
   std::optional<std::vector<StampedPose>> ground_truth_;  // left camera in world
   FrameSkipPolicy skip_;
