@@ -118,7 +118,9 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(da.adaptive.k_sigma, db.adaptive.k_sigma);
   EXPECT_EQ(da.adaptive.disparity_sigma_px, db.adaptive.disparity_sigma_px);
   EXPECT_EQ(da.adaptive.hold_s, db.adaptive.hold_s);
+  EXPECT_EQ(da.adaptive.confirm_frames, db.adaptive.confirm_frames);
   EXPECT_EQ(da.adaptive.min_matches, db.adaptive.min_matches);
+  EXPECT_EQ(da.adaptive.foreground_band_m, db.adaptive.foreground_band_m);
   EXPECT_EQ(da.adaptive.max_hamming, db.adaptive.max_hamming);
   EXPECT_EQ(da.adaptive.static_pose_min_share, db.adaptive.static_pose_min_share);
 }
@@ -141,7 +143,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 14 + 9 + 8 + 3 + 8;
+constexpr int kLeafKeys = 4 + 6 + 10 + 14 + 9 + 8 + 3 + 10;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -204,7 +206,7 @@ TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
   s.dynamic.window_n = 12;
   s.dynamic.forget_s = 3;
   s.dynamic.prior = {0.9, 0.1, 0.4};
-  s.dynamic.adaptive = {0.8, 0.03, 2.5, 0.7, 0.5, 8, 40, 0.3};
+  s.dynamic.adaptive = {0.8, 0.03, 2.5, 0.7, 0.7, 3, 8, 0.25, 40, 0.3};
   s.source_file = "/some/where.yaml";
 
   const std::string yaml = SlamSettingsToYaml(s);

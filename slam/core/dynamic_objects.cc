@@ -68,6 +68,12 @@ ObjectSnapshot DynamicObjects::Snapshot(int64_t t_ns, const FrameFeatures& f, ui
     if (f.object[i] == id && f.depth[i] > 0) by_depth.emplace_back(f.depth[i], static_cast<int>(i));
   }
   std::sort(by_depth.begin(), by_depth.end());
+  // A mask is loose (dilated, jittered): background seen past the object's edges falls inside it
+  // and, being static, would match perfectly over time. Keep the object's own depth band.
+  if (!by_depth.empty()) {
+    const float max_z = by_depth[by_depth.size() / 4].first + static_cast<float>(settings_.adaptive.foreground_band_m);
+    while (!by_depth.empty() && by_depth.back().first > max_z) by_depth.pop_back();
+  }
   if (by_depth.size() > kMaxSnapshotPoints) by_depth.resize(kMaxSnapshotPoints);
   ObjectSnapshot s;
   s.t_ns = t_ns;

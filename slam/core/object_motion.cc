@@ -87,11 +87,13 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
       if (last_.judged) break;
     }
   }
-  if (last_.moving) {
+  consecutive_moving_ = last_.moving ? consecutive_moving_ + 1 : 0;
+  // Onset needs confirm_frames judgements of motion in a row; once dynamic, every one counts.
+  if (last_.moving && (dynamic_ || consecutive_moving_ >= s.confirm_frames)) {
     last_motion_ns_ = t_ns;
     moved_ = true;
     static_since_motion_ = false;
-  } else if (last_.judged && moved_) {
+  } else if (last_.judged && !last_.moving && moved_) {
     static_since_motion_ = true;
   }
   // Released only after hold_s and a judgement that it stands still: an object that moved and

@@ -48,8 +48,9 @@ MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot&
 class ObjectMotionTrack {
  public:
   // Adds the frame's snapshot (may be empty: the object was seen without depth) and returns
-  // whether the object is dynamic: it moved (by MeasureMotion against a snapshot within lag_s)
-  // within the last hold_s, or has not been judged still since it last moved.
+  // whether the object is dynamic: it moved (by MeasureMotion against a snapshot within lag_s,
+  // confirm_frames times in a row to turn dynamic) within the last hold_s, or has not been judged
+  // still since it last moved.
   bool Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s);
   const MotionMeasurement& last() const { return last_; }
 
@@ -57,6 +58,7 @@ class ObjectMotionTrack {
   std::deque<ObjectSnapshot> history_;  // oldest first, all within lag_s of the newest
   MotionMeasurement last_;
   int64_t last_motion_ns_ = 0;
+  int consecutive_moving_ = 0;       // judgements of motion in a row
   bool moved_ = false;
   bool static_since_motion_ = false;  // judged still at least once since it last moved
   bool dynamic_ = false;

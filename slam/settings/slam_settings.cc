@@ -128,7 +128,9 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   a.Number("k_sigma", &ad->k_sigma, NumberRange::Closed(0, 100));
   a.Number("disparity_sigma_px", &ad->disparity_sigma_px, NumberRange::Closed(0, 100));
   a.Number("hold_s", &ad->hold_s, NumberRange::Closed(0, 600));
+  a.Integer("confirm_frames", &ad->confirm_frames, NumberRange::Closed(1, 1000));
   a.Integer("min_matches", &ad->min_matches, kCount1);
+  a.Number("foreground_band_m", &ad->foreground_band_m, NumberRange::Positive());
   a.Integer("max_hamming", &ad->max_hamming, kHamming);
   a.Number("static_pose_min_share", &ad->static_pose_min_share, NumberRange::Closed(0, 1));
   a.RejectUnknownKeys();
@@ -259,7 +261,9 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "k_sigma", a.k_sigma);
   EmitNumber(out, "disparity_sigma_px", a.disparity_sigma_px);
   EmitNumber(out, "hold_s", a.hold_s);
+  EmitInt(out, "confirm_frames", a.confirm_frames);
   EmitInt(out, "min_matches", a.min_matches);
+  EmitNumber(out, "foreground_band_m", a.foreground_band_m);
   EmitInt(out, "max_hamming", a.max_hamming);
   EmitNumber(out, "static_pose_min_share", a.static_pose_min_share);
   out << YAML::EndMap;

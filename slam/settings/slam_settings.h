@@ -54,8 +54,11 @@ struct AdaptiveDynamicSettings {
   double threshold_m = 0.02;         // displacement beyond noise that makes an object dynamic (m)
   double k_sigma = 3.0;              // plus this many standard errors of the displacement (count)
   double disparity_sigma_px = 0.5;   // stereo disparity noise behind the standard error (px)
-  double hold_s = 1.0;               // a dynamic object stays dynamic this long after its last motion (s)
+  double hold_s = 0.5;               // a dynamic object stays dynamic this long after its last motion (s)
+  int confirm_frames = 2;            // consecutive judgements of motion before an object turns dynamic (frames)
   int min_matches = 6;               // matched features needed to judge an object (count)
+  double foreground_band_m = 0.3;    // features deeper than the object's first depth quartile plus this are
+                                     // background seen through the loose mask, not the object (m)
   int max_hamming = 50;              // descriptor distance for matching an object's features over time (bits)
   double static_pose_min_share = 0.2;  // movable objects carry this share of inliers: judge with a pose from the rest (ratio)
 };

@@ -1,0 +1,88 @@
+// Dynamic objects (issue 7) on the shipped dynamic scenarios, live, with the truth of the
+// simulator: each test runs one scenario with the methods it compares (sync mapping, so every
+// figure is deterministic) and checks all of its figures on those runs. The bounds sit near the
+// figures measured on the landed code with about 2x margin (README, "Dynamic objects"); where
+// issue 7's target is tighter than that, the target is the bound.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "apps/run_scenario.h"
+#include "scenario/scenario_loader.h"
+
+namespace viqu {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DynamicRun {
+  YAML::Node m;  // metrics.json
+  double ate_m() const { return m["ate"]["rmse_m"].as<double>(); }
+  double pct() const { return m["ate"]["rmse_pct_path"].as<double>(); }
+  int lost() const { return m["tracking"]["lost_frames"].as<int>(); }
+  double dyn(const char* key) const { return m["dynamic"][key].IsNull() ? -1.0 : m["dynamic"][key].as<double>(); }
+};
+
+DynamicRun Run(const std::string& scenario, const std::string& method) {
+  const Scenario s = LoadScenario(std::string(VIQU_SOURCE_DIR) + "/scenarios/" + scenario + ".yaml",
+                                  {"slam.dynamic.method=" + method});
+  const fs::path dir = fs::temp_directory_path() / ("viqu_dynamic_" + scenario + "_" + method);
+  fs::remove_all(dir);
+  app::RunOptions opt;
+  opt.out_dir = dir.string();
+  EXPECT_EQ(app::RunScenario(s, opt), 0);
+  EXPECT_TRUE(fs::exists(dir / "dynamic.csv"));
+  DynamicRun r{YAML::LoadFile((dir / "metrics.json").string())};
+  std::printf("%s %-9s ATE %.4f m (%.3f%% of path), %d lost; precision %.3f recall %.3f latency median %.2f s "
+              "max %.2f s; kept on static movables %.3f, dropped on moving %.3f; dynamic stage %.2f ms median\n",
+              scenario.c_str(), method.c_str(), r.ate_m(), r.pct(), r.lost(), r.dyn("precision"), r.dyn("recall"),
+              r.dyn("latency_s_median"), r.dyn("latency_s_max"), r.dyn("kept_on_static_movables"),
+              r.dyn("dropped_on_moving"), r.m["timing"]["dynamic_ms_median"].as<double>());
+  return r;
+}
+
+// Detection against truth over object-frames with at least 20 features.
+void ExpectDetection(const DynamicRun& r, double min_precision, double min_recall, double max_latency_median_s) {
+  EXPECT_GE(r.dyn("precision"), min_precision);
+  EXPECT_GE(r.dyn("recall"), min_recall);
+  EXPECT_GE(r.dyn("latency_s_median"), 0.0);  // every scored object was detected at least once
+  EXPECT_LE(r.dyn("latency_s_median"), max_latency_median_s);
+}
+
+TEST(DynamicScenarios, WalkingPeople) {
+  const DynamicRun none = Run("walking_people", "none");
+  const DynamicRun adaptive = Run("walking_people", "adaptive");
+  std::printf("walking_people: adaptive / none ATE = %.3f\n", adaptive.ate_m() / none.ate_m());
+  EXPECT_LE(adaptive.ate_m(), 0.2 * none.ate_m());   // target 0.2x; measured BOUND_WP_RATIO
+  EXPECT_LE(adaptive.pct(), 0.2);                     // target 0.2% of path
+  EXPECT_EQ(adaptive.lost(), 0);
+  ExpectDetection(adaptive, 0.95, 0.90, 0.5);
+  EXPECT_EQ(none.dyn("dropped_on_moving"), 0.0);      // the baseline keeps everything
+}
+
+TEST(DynamicScenarios, PushedBox) {
+  const DynamicRun none = Run("pushed_box", "none");
+  const DynamicRun adaptive = Run("pushed_box", "adaptive");
+  std::printf("pushed_box: adaptive / none ATE = %.4f\n", adaptive.ate_m() / none.ate_m());
+  EXPECT_GE(none.pct(), 5 * 0.04);                    // the baseline degrades (static_room: 0.04%)
+  EXPECT_LE(adaptive.ate_m(), 0.25 * none.ate_m());
+  EXPECT_EQ(adaptive.lost(), 0);
+  ExpectDetection(adaptive, 0.95, 0.90, 0.5);
+}
+
+TEST(DynamicScenarios, StandingPeople) {
+  const DynamicRun semantic = Run("standing_people", "semantic");
+  const DynamicRun adaptive = Run("standing_people", "adaptive");
+  std::printf("standing_people: adaptive / semantic ATE = %.3f\n", adaptive.ate_m() / semantic.ate_m());
+  EXPECT_LE(adaptive.ate_m(), 0.8 * semantic.ate_m());
+  EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.90);
+  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.95);
+  EXPECT_EQ(adaptive.lost(), 0);
+  ExpectDetection(adaptive, 0.95, 0.90, 0.5);
+}
+
+}  // namespace
+}  // namespace viqu
