@@ -26,7 +26,7 @@ struct DynamicRun {
   double dyn(const char* key) const { return m["dynamic"][key].IsNull() ? -1.0 : m["dynamic"][key].as<double>(); }
 };
 
-DynamicRun Run(const std::string& scenario, const std::string& method) {
+DynamicRun RunMethod(const std::string& scenario, const std::string& method) {
   const Scenario s = LoadScenario(std::string(VIQU_SOURCE_DIR) + "/scenarios/" + scenario + ".yaml",
                                   {"slam.dynamic.method=" + method});
   const fs::path dir = fs::temp_directory_path() / ("viqu_dynamic_" + scenario + "_" + method);
@@ -53,8 +53,8 @@ void ExpectDetection(const DynamicRun& r, double min_precision, double min_recal
 }
 
 TEST(DynamicScenarios, WalkingPeople) {
-  const DynamicRun none = Run("walking_people", "none");
-  const DynamicRun adaptive = Run("walking_people", "adaptive");
+  const DynamicRun none = RunMethod("walking_people", "none");
+  const DynamicRun adaptive = RunMethod("walking_people", "adaptive");
   std::printf("walking_people: adaptive / none ATE = %.3f\n", adaptive.ate_m() / none.ate_m());
   EXPECT_LE(adaptive.ate_m(), 0.2 * none.ate_m());   // target 0.2x; measured BOUND_WP_RATIO
   EXPECT_LE(adaptive.pct(), 0.2);                     // target 0.2% of path
@@ -64,8 +64,8 @@ TEST(DynamicScenarios, WalkingPeople) {
 }
 
 TEST(DynamicScenarios, PushedBox) {
-  const DynamicRun none = Run("pushed_box", "none");
-  const DynamicRun adaptive = Run("pushed_box", "adaptive");
+  const DynamicRun none = RunMethod("pushed_box", "none");
+  const DynamicRun adaptive = RunMethod("pushed_box", "adaptive");
   std::printf("pushed_box: adaptive / none ATE = %.4f\n", adaptive.ate_m() / none.ate_m());
   EXPECT_GE(none.pct(), 5 * 0.04);                    // the baseline degrades (static_room: 0.04%)
   EXPECT_LE(adaptive.ate_m(), 0.25 * none.ate_m());
@@ -74,8 +74,8 @@ TEST(DynamicScenarios, PushedBox) {
 }
 
 TEST(DynamicScenarios, StandingPeople) {
-  const DynamicRun semantic = Run("standing_people", "semantic");
-  const DynamicRun adaptive = Run("standing_people", "adaptive");
+  const DynamicRun semantic = RunMethod("standing_people", "semantic");
+  const DynamicRun adaptive = RunMethod("standing_people", "adaptive");
   std::printf("standing_people: adaptive / semantic ATE = %.3f\n", adaptive.ate_m() / semantic.ate_m());
   EXPECT_LE(adaptive.ate_m(), 0.8 * semantic.ate_m());
   EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.90);
