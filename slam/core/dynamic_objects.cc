@@ -26,24 +26,22 @@ DynamicObjects::DynamicObjects(const SlamSettings& settings, const StereoCamera&
     : settings_(settings.dynamic), method_(DynamicMethodOf(settings)), cam_(cam) {}
 
 std::vector<bool> DynamicObjects::KeepMask(const FrameFeatures& f, const std::vector<SegmentInstance>& instances) {
-  reports_.clear();
-  std::map<uint16_t, size_t> report_of;
+  // One report per movable instance, in id order (an id listed twice counts once).
+  std::map<uint16_t, ObjectReport> by_id;
   for (const SegmentInstance& inst : instances) {
-    if (inst.id == 0 || !IsMovable(inst.category) || report_of.count(inst.id)) continue;
-    ObjectReport r;
+    if (inst.id == 0 || !IsMovable(inst.category) || by_id.count(inst.id)) continue;
+    ObjectReport& r = by_id[inst.id];
     r.id = inst.id;
     r.name = inst.name;
     r.category = inst.category;
-    report_of[inst.id] = 0;
-    reports_.push_back(r);
+    const auto it = objects_.find(inst.id);
+    r.dynamic = method_ == DynamicMethod::kSemantic || (it != objects_.end() && it->second.dynamic);
   }
-  std::sort(reports_.begin(), reports_.end(), [](const ObjectReport& a, const ObjectReport& b) { return a.id < b.id; });
-  for (size_t i = 0; i < reports_.size(); ++i) {
-    ObjectReport& r = reports_[i];
-    report_of[r.id] = i;
-    auto it = objects_.find(r.id);
-    const bool dynamic = method_ == DynamicMethod::kSemantic || (it != objects_.end() && it->second.dynamic);
-    r.dynamic = dynamic;
+  reports_.clear();
+  std::map<uint16_t, size_t> report_of;
+  for (const auto& [id, r] : by_id) {
+    report_of[id] = reports_.size();
+    reports_.push_back(r);
   }
   std::vector<bool> keep(f.size(), true);
   for (size_t i = 0; i < f.size(); ++i) {

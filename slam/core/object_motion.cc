@@ -64,6 +64,7 @@ MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot&
   m.std_error_m = kMedianEfficiency * Median(sigma) / std::sqrt(static_cast<double>(m.matches));
   m.threshold_m = s.threshold_m + s.k_sigma * m.std_error_m;
   m.moving = m.displacement_m > m.threshold_m;
+  m.still = !m.moving && m.displacement_m + s.k_sigma * m.std_error_m < s.still_max_m;
   return m;
 }
 
@@ -93,11 +94,11 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
     last_motion_ns_ = t_ns;
     moved_ = true;
     static_since_motion_ = false;
-  } else if (last_.judged && !last_.moving && moved_) {
+  } else if (last_.still && moved_) {
     static_since_motion_ = true;
   }
   // Released only after hold_s and a judgement that it stands still: an object that moved and
-  // then cannot be judged (too few matches) stays dynamic.
+  // then cannot be judged (too few matches, too far for stereo to rule motion out) stays dynamic.
   dynamic_ = moved_ && (t_ns - last_motion_ns_ <= static_cast<int64_t>(s.hold_s * 1e9) || !static_since_motion_);
   history_.push_back(std::move(snapshot));
   return dynamic_;

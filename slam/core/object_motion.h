@@ -38,6 +38,8 @@ struct MotionMeasurement {
   double threshold_m = 0;            // threshold_m + k_sigma * std_error_m (m)
   bool judged = false;               // enough matches to judge
   bool moving = false;               // judged and displacement_m > threshold
+  bool still = false;                // judged and displacement_m + k_sigma * std_error_m < still_max_m:
+                                     // the measurement rules out motion (far, noisy objects are neither)
 };
 
 // Matches `cur` to `ref` (mutual best Hamming distance within max_hamming, best below 0.8 of the
@@ -60,7 +62,7 @@ class ObjectMotionTrack {
   int64_t last_motion_ns_ = 0;
   int consecutive_moving_ = 0;       // judgements of motion in a row
   bool moved_ = false;
-  bool static_since_motion_ = false;  // judged still at least once since it last moved
+  bool static_since_motion_ = false;  // judged still (MotionMeasurement::still) since it last moved
   bool dynamic_ = false;
 };
 
