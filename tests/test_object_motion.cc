@@ -130,6 +130,31 @@ TEST(ObjectMotion, MedianDisplacementResistsMismatches) {
   EXPECT_NEAR(m.displacement_w.y(), 0.0, 1e-9);
 }
 
+// A person's two legs look alike. Seen 1 s ago with both legs, now with the far leg only (the
+// near one has left the image at its edge) whose look now is that of the near leg then: matched
+// against everything, the still person moves by the legs' spacing; reference points that would
+// be out of view had the person stood still are not candidates, and the false motion goes.
+TEST(ObjectMotion, LookAlikePartThatLeftTheViewIsNotMatched) {
+  SyntheticObject near_leg(20, 21), far_leg(20, 22);
+  const AdaptiveDynamicSettings s;
+  ObjectSnapshot ref = near_leg.Observe(0, {-0.5, 0, 0}, 0.0);  // x < 0: out of the current view
+  const ObjectSnapshot far_then = far_leg.Observe(0, {-0.32, 0, 0}, 0.0);
+  for (size_t i = 0; i < far_then.size(); ++i) {
+    ref.p_w.push_back(far_then.p_w[i]);
+    ref.sigma_m.push_back(far_then.sigma_m[i]);
+  }
+  cv::vconcat(ref.descriptors, far_then.descriptors, ref.descriptors);
+  ObjectSnapshot cur = far_leg.Observe(20 * kFrameNs, {-0.32, 0, 0}, 0.0);
+  near_leg.Observe(0, {0, 0, 0}).descriptors.copyTo(cur.descriptors);  // the far leg now looks as the near one did
+
+  const MotionMeasurement fooled = MeasureMotion(ref, cur, s);
+  ASSERT_TRUE(fooled.judged);
+  EXPECT_TRUE(fooled.moving);
+  EXPECT_NEAR(fooled.displacement_m, 0.18, 0.05);
+  const MotionMeasurement m = MeasureMotion(ref, cur, s, [](const Eigen::Vector3d& p_w) { return p_w.x() > -0.45; });
+  EXPECT_FALSE(m.moving);
+}
+
 // The stage on hand-made frames: one person (id 3) and one box (id 5), 30 features each, plus
 // 30 background features and 10 on furniture (id 7).
 struct StageFixture {

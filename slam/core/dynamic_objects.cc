@@ -9,6 +9,20 @@ namespace {
 constexpr int kMaxSnapshotPoints = 256;  // features per object kept for matching over time (bounds
                                          // the quadratic descriptor search; nearest first)
 
+// Whether the pixels `r` px away from (u, v) in the eight directions all carry `id` (pixels off
+// the image count as the same id: the image border is not the object's edge).
+bool InteriorOf(const cv::Mat& instance_id, const cv::KeyPoint& kp, uint16_t id, int r) {
+  const int u = static_cast<int>(std::lround(kp.pt.x)), v = static_cast<int>(std::lround(kp.pt.y));
+  for (int dv = -r; dv <= r; dv += r) {
+    for (int du = -r; du <= r; du += r) {
+      const int x = u + du, y = v + dv;
+      if (x < 0 || y < 0 || x >= instance_id.cols || y >= instance_id.rows) continue;
+      if (instance_id.at<uint16_t>(y, x) != id) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 DynamicMethod DynamicMethodOf(const SlamSettings& s) {
@@ -59,11 +73,14 @@ std::vector<bool> DynamicObjects::KeepMask(const FrameFeatures& f, const std::ve
   return keep;
 }
 
-ObjectSnapshot DynamicObjects::Snapshot(int64_t t_ns, const FrameFeatures& f, uint16_t id,
+ObjectSnapshot DynamicObjects::Snapshot(int64_t t_ns, const FrameFeatures& f, uint16_t id, const cv::Mat& instance_id,
                                         const Eigen::Isometry3d& T_w_c) const {
+  const int r = settings_.adaptive.interior_px;
   std::vector<std::pair<float, int>> by_depth;
   for (size_t i = 0; i < f.size(); ++i) {
-    if (f.object[i] == id && f.depth[i] > 0) by_depth.emplace_back(f.depth[i], static_cast<int>(i));
+    if (f.object[i] != id || !(f.depth[i] > 0)) continue;
+    if (r > 0 && !instance_id.empty() && !InteriorOf(instance_id, f.keypoints[i], id, r)) continue;
+    by_depth.emplace_back(f.depth[i], static_cast<int>(i));
   }
   std::sort(by_depth.begin(), by_depth.end());
   // A mask is loose (dilated, jittered): background seen past the object's edges falls inside it
@@ -116,6 +133,12 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
   }
   if (method_ == DynamicMethod::kNone) return turned;
   const Eigen::Isometry3d T_w_c = T_c_w.inverse();
+  const InViewIfStatic in_view = [this, &T_c_w](const Eigen::Vector3d& p_w) {
+    const Eigen::Vector3d p_c = T_c_w * p_w;
+    if (p_c.z() <= 0) return false;
+    const Eigen::Vector2d uv = cam_.Project(p_c);
+    return cam_.InImage(uv.x(), uv.y());
+  };
   std::map<uint16_t, double> norms;
   if (method_ == DynamicMethod::kPaper) norms = LabelledPointNorms(instance_id, T_c_w, map_points_w);
   for (ObjectReport& r : reports_) {
@@ -139,7 +162,7 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
         break;
       }
       case DynamicMethod::kAdaptive:
-        o.dynamic = o.motion.Add(Snapshot(t_ns, f, r.id, T_w_c), settings_.adaptive);
+        o.dynamic = o.motion.Add(Snapshot(t_ns, f, r.id, instance_id, T_w_c), settings_.adaptive, in_view);
         r.score = o.motion.last().displacement_m;
         r.threshold = o.motion.last().threshold_m;
         break;

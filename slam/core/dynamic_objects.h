@@ -57,7 +57,8 @@ class DynamicObjects {
   std::vector<bool> KeepMask(const FrameFeatures& f, const std::vector<SegmentInstance>& instances);
 
   // Judges the frame's objects with `T_c_w` (map to camera) and the features `f` (all of them,
-  // labelled). `instance_id` (CV_16U) and `map_points_w` serve the paper's method only. Returns
+  // labelled). `instance_id` (CV_16U; may be empty) marks the masks' edges; `map_points_w` serve
+  // the paper's method only. Returns
   // the ids that have turned dynamic with this frame.
   std::vector<uint16_t> Update(int64_t t_ns, const FrameFeatures& f, const cv::Mat& instance_id,
                                const Eigen::Isometry3d& T_c_w, const std::vector<Eigen::Vector3d>& map_points_w);
@@ -72,7 +73,10 @@ class DynamicObjects {
     ObjectMotionTrack motion;      // adaptive
     PaperAttributeSeries paper;    // paper
   };
-  ObjectSnapshot Snapshot(int64_t t_ns, const FrameFeatures& f, uint16_t id, const Eigen::Isometry3d& T_w_c) const;
+  // The object's features with depth, inside its mask by at least adaptive.interior_px (when
+  // `instance_id` is given), within its depth band, in the world frame.
+  ObjectSnapshot Snapshot(int64_t t_ns, const FrameFeatures& f, uint16_t id, const cv::Mat& instance_id,
+                          const Eigen::Isometry3d& T_w_c) const;
   // Eq. 2's w_bar per object id: mean norm of the map points whose projection falls in its mask.
   std::map<uint16_t, double> LabelledPointNorms(const cv::Mat& instance_id, const Eigen::Isometry3d& T_c_w,
                                                 const std::vector<Eigen::Vector3d>& map_points_w) const;

@@ -20,11 +20,13 @@ double Median(std::vector<double> v) {
   return m;
 }
 
-// Best and second-best distance from row i of `a` to the rows of `b`; index of the best.
-int BestMatch(const cv::Mat& a, int i, const cv::Mat& b, int* best_d, int* second_d) {
+// Best and second-best distance from row i of `a` to the rows of `b` (those with `usable_b` set,
+// when it is not empty); index of the best.
+int BestMatch(const cv::Mat& a, int i, const cv::Mat& b, const std::vector<bool>& usable_b, int* best_d, int* second_d) {
   int best = -1;
   *best_d = *second_d = std::numeric_limits<int>::max();
   for (int j = 0; j < b.rows; ++j) {
+    if (!usable_b.empty() && !usable_b[static_cast<size_t>(j)]) continue;
     const int d = DescriptorDistance(a.ptr<uint8_t>(i), b.ptr<uint8_t>(j));
     if (d < *best_d) {
       *second_d = *best_d;
@@ -39,17 +41,23 @@ int BestMatch(const cv::Mat& a, int i, const cv::Mat& b, int* best_d, int* secon
 
 }  // namespace
 
-MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot& cur, const AdaptiveDynamicSettings& s) {
+MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot& cur, const AdaptiveDynamicSettings& s,
+                                const InViewIfStatic& in_view) {
   MotionMeasurement m;
   m.lag_s = (cur.t_ns - ref.t_ns) * 1e-9;
   if (ref.size() == 0 || cur.size() == 0) return m;
+  std::vector<bool> usable;
+  if (in_view) {
+    usable.resize(ref.size());
+    for (size_t j = 0; j < ref.size(); ++j) usable[j] = in_view(ref.p_w[j]);
+  }
   std::vector<double> dx, dy, dz, sigma;
   for (int i = 0; i < cur.descriptors.rows; ++i) {
     int best_d, second_d;
-    const int j = BestMatch(cur.descriptors, i, ref.descriptors, &best_d, &second_d);
+    const int j = BestMatch(cur.descriptors, i, ref.descriptors, usable, &best_d, &second_d);
     if (j < 0 || best_d > s.max_hamming || best_d >= kMatchRatio * second_d) continue;
     int back_d, back_second;
-    if (BestMatch(ref.descriptors, j, cur.descriptors, &back_d, &back_second) != i) continue;
+    if (BestMatch(ref.descriptors, j, cur.descriptors, {}, &back_d, &back_second) != i) continue;
     const Eigen::Vector3d d = cur.p_w[static_cast<size_t>(i)] - ref.p_w[static_cast<size_t>(j)];
     dx.push_back(d.x());
     dy.push_back(d.y());
@@ -64,11 +72,14 @@ MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot&
   m.std_error_m = kMedianEfficiency * Median(sigma) / std::sqrt(static_cast<double>(m.matches));
   m.threshold_m = s.threshold_m + s.k_sigma * m.std_error_m;
   m.moving = m.displacement_m > m.threshold_m;
-  m.still = !m.moving && m.displacement_m + s.k_sigma * m.std_error_m < s.still_max_m;
+  // Stillness needs a long look: a walking person's stance foot stands still between two frames
+  // while the other swings, so a short lag can show motion but never rule it out. Half the lag
+  // (not a setting: it only says "a long look", lag_s sets the scale).
+  m.still = !m.moving && m.displacement_m + s.k_sigma * m.std_error_m < s.still_max_m && m.lag_s >= 0.5 * s.lag_s;
   return m;
 }
 
-bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s) {
+bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view) {
   const int64_t t_ns = snapshot.t_ns;
   const int64_t lag_ns = static_cast<int64_t>(s.lag_s * 1e9);
   while (!history_.empty() && history_.front().t_ns < t_ns - lag_ns) history_.pop_front();
@@ -84,7 +95,7 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
     const size_t picks[] = {0, refs.size() / 2, refs.size() - 1};
     for (size_t k = 0; k < 3; ++k) {
       if (k > 0 && picks[k] == picks[k - 1]) continue;
-      last_ = MeasureMotion(*refs[picks[k]], snapshot, s);
+      last_ = MeasureMotion(*refs[picks[k]], snapshot, s, in_view);
       if (last_.judged) break;
     }
   }

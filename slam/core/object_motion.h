@@ -11,6 +11,7 @@
 // the image or half hidden does not look like one that moves.
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -38,13 +39,21 @@ struct MotionMeasurement {
   double threshold_m = 0;            // threshold_m + k_sigma * std_error_m (m)
   bool judged = false;               // enough matches to judge
   bool moving = false;               // judged and displacement_m > threshold
-  bool still = false;                // judged and displacement_m + k_sigma * std_error_m < still_max_m:
-                                     // the measurement rules out motion (far, noisy objects are neither)
+  bool still = false;                // judged, displacement_m + k_sigma * std_error_m < still_max_m, over at
+                                     // least half of lag_s: the measurement rules out motion (far, noisy
+                                     // objects and short looks are neither moving nor still)
 };
 
+// Whether a world point (m) would be in the current image if it had not moved.
+using InViewIfStatic = std::function<bool(const Eigen::Vector3d& p_w)>;
+
 // Matches `cur` to `ref` (mutual best Hamming distance within max_hamming, best below 0.8 of the
-// second best) and tests the median displacement.
-MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot& cur, const AdaptiveDynamicSettings& s);
+// second best) and tests the median displacement. Reference points that would be out of the
+// current view had they stood still are left out (`in_view` may be empty: all are used): an
+// object leaving the image at its edge otherwise matches its remaining part with a look-alike
+// part that has left (a person's two legs carry the same texture), a consistent false motion.
+MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot& cur, const AdaptiveDynamicSettings& s,
+                                const InViewIfStatic& in_view = {});
 
 // One object's snapshots over the last lag_s and its decision with hold time.
 class ObjectMotionTrack {
@@ -53,7 +62,7 @@ class ObjectMotionTrack {
   // whether the object is dynamic: it moved (by MeasureMotion against a snapshot within lag_s,
   // confirm_frames times in a row to turn dynamic) within the last hold_s, or has not been judged
   // still since it last moved.
-  bool Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s);
+  bool Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view = {});
   const MotionMeasurement& last() const { return last_; }
 
  private:

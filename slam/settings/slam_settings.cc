@@ -131,6 +131,7 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   a.Number("hold_s", &ad->hold_s, NumberRange::Closed(0, 600));
   a.Integer("confirm_frames", &ad->confirm_frames, NumberRange::Closed(1, 1000));
   a.Integer("min_matches", &ad->min_matches, kCount1);
+  a.Integer("interior_px", &ad->interior_px, NumberRange::Closed(0, 100));
   a.Number("foreground_band_m", &ad->foreground_band_m, NumberRange::Positive());
   a.Integer("max_hamming", &ad->max_hamming, kHamming);
   a.Number("static_pose_min_share", &ad->static_pose_min_share, NumberRange::Closed(0, 1));
@@ -265,6 +266,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "hold_s", a.hold_s);
   EmitInt(out, "confirm_frames", a.confirm_frames);
   EmitInt(out, "min_matches", a.min_matches);
+  EmitInt(out, "interior_px", a.interior_px);
   EmitNumber(out, "foreground_band_m", a.foreground_band_m);
   EmitInt(out, "max_hamming", a.max_hamming);
   EmitNumber(out, "static_pose_min_share", a.static_pose_min_share);

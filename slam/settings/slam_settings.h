@@ -58,6 +58,8 @@ struct AdaptiveDynamicSettings {
   double hold_s = 1.0;               // a dynamic object stays dynamic this long after its last motion (s)
   int confirm_frames = 2;            // consecutive judgements of motion before an object turns dynamic (frames)
   int min_matches = 6;               // matched features needed to judge an object (count)
+  int interior_px = 6;               // features nearer than this to the mask's edge are not judged: corners on
+                                     // the silhouette mix the object with the background behind it (px)
   double foreground_band_m = 0.3;    // features deeper than the object's first depth quartile plus this are
                                      // background seen through the loose mask, not the object (m)
   int max_hamming = 50;              // descriptor distance for matching an object's features over time (bits)
