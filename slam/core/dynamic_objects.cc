@@ -133,11 +133,16 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
   }
   if (method_ == DynamicMethod::kNone) return turned;
   const Eigen::Isometry3d T_w_c = T_c_w.inverse();
+  // A reference point that would now lie within kBorderPx of the image edge cannot have been
+  // detected again (ORB needs a 31 px patch, 37 px on the second level): only its look-alikes can
+  // match it.
+  constexpr double kBorderPx = 40;
   const InViewIfStatic in_view = [this, &T_c_w](const Eigen::Vector3d& p_w) {
     const Eigen::Vector3d p_c = T_c_w * p_w;
     if (p_c.z() <= 0) return false;
     const Eigen::Vector2d uv = cam_.Project(p_c);
-    return cam_.InImage(uv.x(), uv.y());
+    return uv.x() >= kBorderPx && uv.y() >= kBorderPx && uv.x() <= cam_.width - 1 - kBorderPx &&
+           uv.y() <= cam_.height - 1 - kBorderPx;
   };
   std::map<uint16_t, double> norms;
   if (method_ == DynamicMethod::kPaper) norms = LabelledPointNorms(instance_id, T_c_w, map_points_w);

@@ -54,7 +54,7 @@ struct AdaptiveDynamicSettings {
   double threshold_m = 0.02;         // displacement beyond noise that makes an object dynamic (m)
   double k_sigma = 3.0;              // plus this many standard errors of the displacement (count)
   double disparity_sigma_px = 0.5;   // stereo disparity noise behind the standard error (px)
-  double still_max_m = 0.1;          // judged still only when displacement + k_sigma std errors is below this (m)
+  double still_max_m = 0.15;         // judged still only when displacement + k_sigma std errors is below this (m)
   double hold_s = 1.0;               // a dynamic object stays dynamic this long after its last motion (s)
   int confirm_frames = 2;            // consecutive judgements of motion before an object turns dynamic (frames)
   int min_matches = 6;               // matched features needed to judge an object (count)
