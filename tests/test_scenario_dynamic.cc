@@ -88,6 +88,20 @@ TEST(DynamicScenarios, StandingPeople) {
   EXPECT_EQ(semantic.dyn("kept_on_static_movables"), 0.0);  // semantic drops every person
 }
 
+// The same corridor of people on a plain checker floor with no walls: the people are nearly all
+// the texture, so removing them by category loses the track.
+TEST(DynamicScenarios, StandingCrowd) {
+  const DynamicRun semantic = RunMethod("standing_crowd", "semantic");
+  const DynamicRun adaptive = RunMethod("standing_crowd", "adaptive");
+  std::printf("standing_crowd: adaptive / semantic ATE = %.3f\n", adaptive.ate_m() / semantic.ate_m());
+  EXPECT_GE(semantic.lost(), 300);                            // measured 659 of 801 frames lost
+  EXPECT_LE(adaptive.ate_m(), 0.12 * semantic.ate_m());       // measured 0.059 (43.2 / 735.5 mm); target 0.8
+  EXPECT_LE(adaptive.lost(), 40);                             // measured 20
+  EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.90);   // measured 0.98; target 0.90
+  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.45);         // measured 0.73; target 0.95, not met
+  ExpectDetection(adaptive, 0.6, 0.6, 0.5);                   // measured 0.816, 0.816, 0.25 s
+}
+
 TEST(DynamicScenarios, StandingThenWalking) {
   const DynamicRun adaptive = RunMethod("standing_then_walking", "adaptive");
   EXPECT_EQ(adaptive.lost(), 0);
