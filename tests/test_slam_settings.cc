@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/errors.h"
+#include "slam/core/dynamic_objects.h"
 #include "slam/settings/slam_settings.h"
 
 namespace viqu::slam {
@@ -271,8 +272,8 @@ TEST_F(SlamSettingsTest, DynamicKeysAreCheckedLikeTheRest) {
             Path() + ":1:27: key 'dynamic.prior.person' expected a number in [0, 1], got '1.5'");
   const SlamSettings s = LoadSlamSettings(DefaultSlamSettingsPath(), {"dynamic.method=none", "mode=visual_dynamic"});
   EXPECT_EQ(s.dynamic.method, "none");
-  EXPECT_FALSE(s.DynamicStageOn());
-  EXPECT_TRUE(SlamSettings().DynamicStageOn());
+  EXPECT_EQ(DynamicMethodOf(s), DynamicMethod::kNone);
+  EXPECT_EQ(DynamicMethodOf(SlamSettings()), DynamicMethod::kAdaptive);
 }
 
 TEST_F(SlamSettingsTest, WrongType) {

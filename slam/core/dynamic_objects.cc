@@ -51,25 +51,19 @@ std::vector<bool> DynamicObjects::KeepMask(const FrameFeatures& f, const std::ve
     const auto it = objects_.find(inst.id);
     r.dynamic = method_ == DynamicMethod::kSemantic || (it != objects_.end() && it->second.dynamic);
   }
-  reports_.clear();
-  std::map<uint16_t, size_t> report_of;
-  for (const auto& [id, r] : by_id) {
-    report_of[id] = reports_.size();
-    reports_.push_back(r);
-  }
   std::vector<bool> keep(f.size(), true);
   for (size_t i = 0; i < f.size(); ++i) {
-    const uint16_t id = f.object.empty() ? 0 : f.object[i];
-    if (id == 0) continue;
-    const auto it = report_of.find(id);
-    if (it == report_of.end()) continue;
-    ObjectReport& r = reports_[it->second];
+    const auto it = f.object.empty() ? by_id.end() : by_id.find(f.object[i]);
+    if (it == by_id.end()) continue;
+    ObjectReport& r = it->second;
     ++r.features;
     if (r.dynamic && method_ != DynamicMethod::kNone) {
       keep[i] = false;
       ++r.dropped;
     }
   }
+  reports_.clear();
+  for (auto& [id, r] : by_id) reports_.push_back(std::move(r));
   return keep;
 }
 

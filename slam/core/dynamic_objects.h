@@ -51,6 +51,8 @@ class DynamicObjects {
   DynamicMethod method() const { return method_; }
   // The paper's method labels map points by their projection (Update's `map_points_w`).
   bool NeedsMapPoints() const { return method_ == DynamicMethod::kPaper; }
+  // Paper and adaptive judge with the frame's pose (semantic and none do not).
+  bool NeedsPose() const { return method_ == DynamicMethod::kPaper || method_ == DynamicMethod::kAdaptive; }
 
   // Starts a frame: one report per movable instance of `instances` present in `f`, and the
   // features to keep (false: on an object judged dynamic; semantic: on any movable object).

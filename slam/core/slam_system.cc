@@ -74,10 +74,12 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
   // After tracking: judge the objects again with the frame's pose.
   td = Clock::now();
   if (m.dynamic->method() != DynamicMethod::kNone && r.status != TrackStatus::kLost && !m.dynamic->reports().empty()) {
-    std::vector<bool> movable(static_cast<size_t>(m.dynamic->reports().back().id) + 1, false);
-    for (const ObjectReport& o : m.dynamic->reports()) movable[o.id] = true;
-    const Eigen::Isometry3d T_c_w =
-        m.tracker.LastPoseWithout(movable, m.settings.dynamic.adaptive.static_pose_min_share, &r.excluded_share);
+    Eigen::Isometry3d T_c_w = m.tracker.LastPose();
+    if (m.dynamic->NeedsPose()) {
+      std::vector<bool> movable(static_cast<size_t>(m.dynamic->reports().back().id) + 1, false);
+      for (const ObjectReport& o : m.dynamic->reports()) movable[o.id] = true;
+      T_c_w = m.tracker.LastPoseWithout(movable, m.settings.dynamic.adaptive.static_pose_min_share, &r.excluded_share);
+    }
     const std::vector<Eigen::Vector3d> points =
         m.dynamic->NeedsMapPoints() ? m.tracker.LocalMapPointPositions() : std::vector<Eigen::Vector3d>{};
     const std::vector<uint16_t> turned = m.dynamic->Update(frame.t_ns, *features, frame.left_instance_id, T_c_w, points);
@@ -88,6 +90,7 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
   }
   dynamic_ms += ms_since(td);
   r.features = static_cast<int>(features->size());
+  r.stereo_points = static_cast<int>(std::count_if(features->depth.begin(), features->depth.end(), [](float d) { return d > 0; }));
   r.features_dropped = r.features - kept;
   r.objects = m.dynamic->reports();
   r.dynamic_ms = dynamic_ms;

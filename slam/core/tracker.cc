@@ -72,6 +72,12 @@ std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame
       frame.intrinsics.fx != cam_.fx) {
     throw InputError("frame at t=" + std::to_string(frame.t_ns) + " ns has intrinsics that differ from the first frame's");
   }
+  if (!frame.left_instance_id.empty() &&
+      (frame.left_instance_id.cols != cam_.width || frame.left_instance_id.rows != cam_.height ||
+       frame.left_instance_id.type() != CV_16UC1)) {
+    throw InputError("frame at t=" + std::to_string(frame.t_ns) + " ns: the instance image is not " +
+                     std::to_string(cam_.width) + "x" + std::to_string(cam_.height) + " 16-bit");
+  }
   auto f = std::make_shared<FrameFeatures>();
   const bool rgbd = settings_.input == "rgbd";
   const cv::Mat left = ToGrey(frame.left_rgb);
@@ -114,12 +120,6 @@ std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame
     const double s = extractor_.ScaleOfLevel(l);
     f->level_scale.push_back(static_cast<float>(s));
     f->level_sigma2.push_back(static_cast<float>(s * s));
-  }
-  if (!frame.left_instance_id.empty() &&
-      (frame.left_instance_id.cols != cam_.width || frame.left_instance_id.rows != cam_.height ||
-       frame.left_instance_id.type() != CV_16UC1)) {
-    throw InputError("frame at t=" + std::to_string(frame.t_ns) + " ns: the instance image is not " +
-                     std::to_string(cam_.width) + "x" + std::to_string(cam_.height) + " 16-bit");
   }
   f->LabelObjects(frame.left_instance_id);
   f->BuildGrid(cam_.width, cam_.height);
@@ -169,8 +169,6 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   }
   TrackResult r;
   r.t_ns = frame.t_ns;
-  r.features = static_cast<int>(features->size());
-  for (float d : features->depth) r.stereo_points += d > 0 ? 1 : 0;
 
   std::lock_guard<std::mutex> lock(map_->mutex);
   temporary_.clear();

@@ -45,6 +45,8 @@ class Tracker {
   // `min_share` (then nothing is optimised). `*excluded_share` (may be null): that share.
   Eigen::Isometry3d LastPoseWithout(const std::vector<bool>& excluded_instance, double min_share,
                                     double* excluded_share);
+  // The pose of the frame just tracked (map to camera).
+  Eigen::Isometry3d LastPose() const { return last_.T_c_w; }
   // Positions of the local map's good points (map frame, m) after the last Track().
   std::vector<Eigen::Vector3d> LocalMapPointPositions() const;
   KeyFrame* TakePendingKeyFrame() {

@@ -92,9 +92,6 @@ struct SlamSettings {
   TrackingSettings tracking;
   MappingSettings mapping;
   DynamicSettings dynamic;
-
-  // The dynamic-object stage runs (mode visual_dynamic or full, method other than none).
-  bool DynamicStageOn() const { return mode != "visual" && dynamic.method != "none"; }
 };
 
 // Reads settings from `path`. Keys not in the file keep their defaults; `overrides` are
