@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "apps/lo_run.h"
 #include "apps/progress.h"
 #include "apps/robot_rig.h"
 #include "apps/run_metrics.h"
@@ -24,6 +25,7 @@
 #include "sim/imu_model.h"
 #include "sim/segmentation_model.h"
 #include "sim/stereo_renderer.h"
+#include "sim/touch_model.h"
 #include "sim/trajectory_writer.h"
 #include "sim/depth_quantisation.h"
 #include "sim/tum_recorder.h"
@@ -37,6 +39,7 @@ constexpr uint64_t kStreamImu = 0x1111'0000'0000'0001ULL;
 constexpr uint64_t kStreamJoints = 0x2222'0000'0000'0002ULL;
 constexpr uint64_t kStreamCamera = 0x3333'0000'0000'0003ULL;
 constexpr uint64_t kStreamSegmentation = 0x4444'0000'0000'0004ULL;
+constexpr uint64_t kStreamTouch = 0x5555'0000'0000'0005ULL;
 
 constexpr double kFallTiltRad = 60.0 * M_PI / 180.0;  // trunk tilt that counts as a fall
 
@@ -46,6 +49,7 @@ struct Sensors {
       : imu(s.sensors.imu, s.seed ^ kStreamImu),
         joints(s.sensors.joints, s.seed ^ kStreamJoints),
         segmentation(s.sensors.segmentation, s.seed ^ kStreamSegmentation),
+        touch(s.sensors.touch, s.seed ^ kStreamTouch),
         camera_rng(s.seed ^ kStreamCamera),
         imu_clock(s.sensors.imu.rate_hz),
         joint_clock(s.sensors.joints.rate_hz),
@@ -53,6 +57,7 @@ struct Sensors {
   sim::ImuModel imu;
   sim::EncoderModel joints;
   sim::SegmentationModel segmentation;
+  sim::TouchModel touch;
   std::mt19937_64 camera_rng;
   SensorClock imu_clock, joint_clock, camera_clock;
 };
@@ -145,6 +150,19 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     const Eigen::Isometry3d T_w_c0 = ToIsometry(world.GroundTruth().T_w_cam);
     slam = std::make_unique<SlamRun>(*settings, out, T_w_c0);
   }
+  // Leg odometry + IMU (mode full), anchored at the true first trunk pose likewise: one filter
+  // alone (trajectory_lo.txt, lo.* metrics) and one fused with vision.
+  std::unique_ptr<LoRun> lo;
+  std::unique_ptr<lo::LegOdometry> fused_lo;
+  std::unique_ptr<slam::VisualLegFusion> fusion;
+  if (opt.slam && settings->mode == "full") {
+    const Eigen::Isometry3d T_w_b0 = ToIsometry(world.GroundTruth().T_w_body);
+    lo = std::make_unique<LoRun>(settings->lo, rig.kinematics(), out, world.time_ns(), T_w_b0, world.T_body_cam(false));
+    fused_lo = std::make_unique<lo::LegOdometry>(settings->lo, rig.kinematics());
+    fused_lo->Start(world.time_ns(), T_w_b0);
+    fusion = std::make_unique<slam::VisualLegFusion>(fused_lo.get(), world.T_body_cam(false), settings->lo.fusion_min_inliers);
+    slam->SetFusion(fusion.get());
+  }
   eval::Trajectory gt_cam;
 
   std::unique_ptr<sim::EurocRecorder> recorder;
@@ -171,11 +189,32 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     if (sensors.imu_clock.Due(t_ns)) {
       const ImuSample imu = sensors.imu.Measure(t_ns, world.TrueAccel(), world.TrueGyro());
       if (recorder) recorder->AddImu(imu);
+      if (lo) lo->AddImu(imu);
+      if (fused_lo) fused_lo->AddImu(imu);
     }
     if (sensors.joint_clock.Due(t_ns)) {
       const JointState js = sensors.joints.Measure(t_ns, world.JointPositions(), world.JointVelocities(),
                                                    world.FootContacts());
       if (recorder) recorder->AddJoints(js);
+      if (lo) {
+        // The controller publishes its planned stance with every encoder reading; the touch
+        // sensors are read with the encoders.
+        std::optional<ContactReading> contact;
+        if (settings->lo.contact == "schedule") contact = ContactReading{t_ns, rig.gait().planned_stance()};
+        if (settings->lo.contact == "touch") contact = sensors.touch.Measure(t_ns, world.FootNormalForces());
+        if (contact) {
+          lo->AddContact(*contact);
+          fused_lo->AddContact(*contact);
+        }
+        fused_lo->AddJoints(js);
+        LoTruth truth;
+        truth.contact = world.FootContacts();
+        const GroundTruthState gt = world.GroundTruth();
+        truth.p_w_body = gt.T_w_body.p_w_x;
+        truth.vel_w_body = gt.vel_w_body;
+        for (int i = 0; i < kNumLegs; ++i) truth.sole_speed_mps[i] = world.FootSoleVelocityWorld(static_cast<Leg>(i)).norm();
+        lo->AddJoints(js, sensors.joint_clock.period_ns(), truth);
+      }
     }
     if (sensors.camera_clock.Due(t_ns)) {
       const auto r0 = std::chrono::steady_clock::now();
@@ -184,6 +223,14 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count());
       sim::AddPixelNoise(&frame.left_rgb, s.sensors.camera.noise_std, &sensors.camera_rng);
       sim::AddPixelNoise(&frame.right_rgb, s.sensors.camera.noise_std, &sensors.camera_rng);
+      // A camera outage: black images (after the noise draws, so that the seeded streams of the
+      // rest of the run do not change).
+      for (const Vec2& d : s.sensors.camera.dropouts) {
+        if (t_ns >= std::llround(d[0] * 1e9) && t_ns < std::llround(d[1] * 1e9)) {
+          frame.left_rgb.setTo(cv::Scalar::all(0));
+          frame.right_rgb.setTo(cv::Scalar::all(0));
+        }
+      }
       // The simulator's truth about the obstacles, from the ideal instance image, before the
       // detector model changes it.
       std::vector<ObjectTruth> truth;
@@ -195,6 +242,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       const GroundTruthState gt = world.GroundTruth();
       gt_out.Add(gt.T_w_cam);
       gt_cam.push_back(gt.T_w_cam);
+      if (lo) lo->AddFrame(t_ns);
       if (slam) {
         const slam::TrackResult r = slam->Track(frame, &truth);
         metrics.track_ms.push_back(r.track_ms);
@@ -230,6 +278,8 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   AddRunMetrics(s, metrics, &json);
   SlamSummary summary;
   if (slam) summary = slam->Finish(gt_cam, metrics.path_length_m, &json);
+  LoSummary lo_summary;
+  if (lo) lo_summary = lo->Finish(gt_cam, metrics.path_length_m, &json);
   WriteFileAtomic(out + "/metrics.json", json.ToString());
 
   std::printf("viqu run %s: %.1f s simulated in %.1f s (real-time factor %.2fx), path %.2f m, %d frames, "
@@ -237,6 +287,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
               s.name.c_str(), metrics.sim_time_s, metrics.wall_time_s, metrics.sim_time_s / metrics.wall_time_s,
               metrics.path_length_m, metrics.frames, Median(metrics.render_ms), metrics.fell ? ", ROBOT FELL" : "");
   if (slam) std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
+  if (lo) std::printf("%s\n", LoSummaryLine(lo_summary).c_str());
   std::printf("outputs: %s/{scenario.yaml,trajectory_gt.txt,metrics.json%s%s%s}\n", out.c_str(),
               slam ? ",trajectory_est.txt,tracking.csv,slam_settings.yaml" : "",
               recorder ? (tum_recorder ? ",dataset/,dataset_tum/" : ",dataset/") : (tum_recorder ? ",dataset_tum/" : ""),

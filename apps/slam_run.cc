@@ -17,7 +17,9 @@ SlamRun::SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
 }
 
 slam::TrackResult SlamRun::Track(const StereoFrame& frame, const std::vector<ObjectTruth>* truth) {
+  if (fusion_) fusion_->BeforeTrack(&system_);
   const slam::TrackResult r = system_.Track(frame);
+  if (fusion_) fusion_->AfterTrack(r);
   dynamic_.Add(r.t_ns, r.objects, truth);
   const StampedPose p = ToStampedPose(r.t_ns, r.T_w_c);
   writer_.Add(p);

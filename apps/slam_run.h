@@ -13,6 +13,7 @@
 #include "common/json_writer.h"
 #include "sim/trajectory_writer.h"
 #include "slam/core/slam_system.h"
+#include "slam/fusion/visual_leg_fusion.h"
 #include "slam/eval/trajectory.h"
 
 namespace viqu::app {
@@ -41,6 +42,10 @@ class SlamRun {
 
   const eval::Trajectory& estimate() const { return est_; }
 
+  // slam.mode full: leg odometry + IMU gives each frame's motion prior and is corrected by the
+  // frames tracked well (not owned; null: vision alone).
+  void SetFusion(slam::VisualLegFusion* fusion) { fusion_ = fusion; }
+
  private:
   slam::SlamSystem system_;
   sim::TrajectoryWriter writer_;
@@ -48,6 +53,7 @@ class SlamRun {
   DynamicScore dynamic_;                   // dynamic.csv
   eval::Trajectory est_;
   std::vector<slam::TrackStatus> status_;
+  slam::VisualLegFusion* fusion_ = nullptr;
 };
 
 // "ATE 0.0123 m RMSE (0.41% of 3.00 m), 0 lost of 400 frames, 35 keyframes, tracking 18.2 ms median"

@@ -86,6 +86,18 @@ LegKinematics LegKinematics::FromUrdfString(const std::string& xml, const std::s
     c.knee_upper = knee->limits->upper;
     CheckPlanarLeg(c, leg, what);
     const double l1 = -c.T_thigh_knee.translation().z(), l2 = -c.T_shank_foot.translation().z();
+    const auto foot_link = model->getLink(foot->child_link_name);
+    const auto* sphere = foot_link && foot_link->collision && foot_link->collision->geometry
+                             ? dynamic_cast<const urdf::Sphere*>(foot_link->collision->geometry.get())
+                             : nullptr;
+    if (!sphere || !(sphere->radius > 0)) {
+      throw InputError(what + ": link " + foot->child_link_name + " needs <collision><geometry><sphere radius=...>");
+    }
+    if (i == 0) {
+      k.foot_radius_ = sphere->radius;
+    } else if (std::abs(sphere->radius - k.foot_radius_) > kGeomTol) {
+      throw InputError(what + ": leg " + leg + " has a different foot radius than FL");
+    }
     if (i == 0) {
       k.l1_ = l1;
       k.l2_ = l2;
@@ -117,6 +129,13 @@ Eigen::Matrix<double, 3, 2> LegKinematics::FootJacobian(Leg leg, double theta1, 
   J.col(0) = a1.cross(p_foot - T_trunk_thigh.translation());
   J.col(1) = a2.cross(p_foot - T_trunk_shank.translation());
   return J;
+}
+
+Eigen::Vector3d LegKinematics::ShankAngularVelocity(Leg leg, double theta1_dot, double theta2_dot) const {
+  const LegChain& c = legs_[static_cast<int>(leg)];
+  // Hip and knee axes are parallel and the knee origin is not rotated (CheckPlanarLeg), so both
+  // rates turn about the hip axis expressed in the trunk.
+  return c.T_trunk_hip.linear() * c.hip_axis * (theta1_dot + theta2_dot);
 }
 
 bool LegKinematics::Inverse(Leg leg, const Eigen::Vector3d& p_trunk_foot, double* theta1,

@@ -46,11 +46,19 @@ class LegKinematics {
   double thigh_length() const { return l1_; }  // l1 (m)
   double shank_length() const { return l2_; }  // l2 (m)
   double total_mass() const { return total_mass_; }  // sum of all URDF link masses (kg)
+  // Radius of the foot sphere (m), from the foot links' <collision><sphere>: the foot centre sits
+  // this high above the ground, and rolls over it as the shank turns.
+  double foot_radius() const { return foot_radius_; }
+
+  // Angular velocity of the shank (and the foot) relative to the trunk, in the trunk frame, for
+  // joint rates (rad/s): both pitch axes are parallel (checked on loading).
+  Eigen::Vector3d ShankAngularVelocity(Leg leg, double theta1_dot, double theta2_dot) const;
 
  private:
   std::array<LegChain, kNumLegs> legs_;
   double l1_ = 0, l2_ = 0;
   double total_mass_ = 0;
+  double foot_radius_ = 0;
 };
 
 }  // namespace viqu::kin

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace viqu {
@@ -54,6 +55,9 @@ struct CameraConfig {                // sensors.camera
   double noise_std = 2.0;            // Gaussian pixel noise, std in 8-bit grey levels
   bool depth = true;                 // render metric depth for the left camera
   bool segmentation = true;          // render the instance segmentation for the left camera
+  // Camera outages: [t0_s, t1_s] intervals in which both images are black (a covered lens, a
+  // dropped video link); the frames still come, with nothing to see.
+  std::vector<Vec2> dropouts;
 };
 
 struct ImuConfig {                   // sensors.imu
@@ -70,6 +74,11 @@ struct JointsConfig {                // sensors.joints
   double resolution_rad = 0.0015;    // encoder quantisation step (rad); 0 = none (~12 bit)
 };
 
+struct TouchConfig {                 // sensors.touch: foot touch sensors, read with the encoders
+  double threshold_n = 0.5;          // a foot reads "in contact" when its measured normal force exceeds this (N)
+  double noise_n = 0.1;              // white noise std on the normal force (N)
+};
+
 struct SegmentationConfig {          // sensors.segmentation (steps in sim/segmentation_model.h)
   double miss_rate = 0.05;           // probability that an instance is missing from a frame
   int dilate_px = 2;                 // mask dilation (px), imitates a detector's loose masks
@@ -84,6 +93,7 @@ struct SensorsConfig {
   CameraConfig camera;
   ImuConfig imu;
   JointsConfig joints;
+  TouchConfig touch;
   SegmentationConfig segmentation;
 };
 
@@ -131,8 +141,12 @@ struct SlamConfig {                  // slam
   std::string mode = "full";         // visual | visual_dynamic | full
   std::string config;                // settings file; empty = slam/config/default.yaml
   DynamicConfig dynamic;
-  // The `slam.mode` / `slam.dynamic.*` keys present in the scenario, as SLAM-settings overrides
-  // ("mode=full", "dynamic.alpha=1.5"), applied on top of the settings file in that order.
+  // `slam.lo.*` keys present in the scenario (key, value as written), in file order: leg-odometry
+  // settings (slam/config/default.yaml, block lo) for this scenario.
+  std::vector<std::pair<std::string, std::string>> lo;
+  // The `slam.mode` / `slam.dynamic.*` / `slam.lo.*` keys present in the scenario, as
+  // SLAM-settings overrides ("mode=full", "dynamic.alpha=1.5"), applied on top of the settings
+  // file in that order.
   std::vector<std::string> settings_overrides;
 };
 

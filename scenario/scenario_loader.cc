@@ -143,6 +143,17 @@ void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
   cam.Number("noise_std", &s->camera.noise_std, NumberRange::Closed(0, 255));
   cam.Bool("depth", &s->camera.depth);
   cam.Bool("segmentation", &s->camera.segmentation);
+  if (cam.Has("dropouts")) {
+    const YAML::Node list = cam.List("dropouts");
+    s->camera.dropouts = ReadPointList(cam.source(), list, cam.KeyPath("dropouts"));
+    for (size_t i = 0; i < s->camera.dropouts.size(); ++i) {
+      const Vec2& d = s->camera.dropouts[i];
+      if (!(d[0] >= 0 && d[1] > d[0])) {
+        cam.source().Fail(JoinKeyPath(cam.KeyPath("dropouts"), std::to_string(i)), Element(list, i),
+                          "a dropout is [t0_s, t1_s] with 0 <= t0_s < t1_s");
+      }
+    }
+  }
   cam.RejectUnknownKeys();
 
   YamlMapReader imu = m.Map("imu");
@@ -158,6 +169,11 @@ void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
   joints.Number("noise_rad", &s->joints.noise_rad, NumberRange::NonNegative());
   joints.Number("resolution_rad", &s->joints.resolution_rad, NumberRange::Closed(0, 0.1));
   joints.RejectUnknownKeys();
+
+  YamlMapReader touch = m.Map("touch");
+  touch.Number("threshold_n", &s->touch.threshold_n, NumberRange::Positive());
+  touch.Number("noise_n", &s->touch.noise_n, NumberRange::NonNegative());
+  touch.RejectUnknownKeys();
 
   YamlMapReader seg = m.Map("segmentation");
   seg.Number("miss_rate", &s->segmentation.miss_rate, NumberRange::Closed(0, 1));
@@ -261,6 +277,22 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
     s->settings_overrides.push_back("dynamic.window_n=" + std::to_string(s->dynamic.window_n));
   }
   d.RejectUnknownKeys();
+  // slam.lo: the leg-odometry settings. The SLAM settings loader checks each value's range when
+  // the run starts; here the keys and their kinds are checked, so that a misspelt key is an error
+  // at its line.
+  YamlMapReader lo = m.Map("lo");
+  std::string contact;
+  if (lo.Choice("contact", &contact, {"schedule", "touch", "estimated"})) {
+    s->lo.emplace_back("contact", contact);
+  }
+  for (const char* key : {"attitude_gain", "gyro_bias_gain", "gravity_gate_mps2", "accel_noise", "stance_foot_noise",
+                          "swing_foot_noise", "kin_position_noise_m", "kin_velocity_noise_mps", "velocity_window_s", "touchdown_s",
+                          "touchdown_inflation", "slip_gate_chi2", "contact_height_m", "fusion_min_inliers"}) {
+    double v = 0;
+    if (lo.Number(key, &v, NumberRange::NonNegative())) s->lo.emplace_back(key, YamlNumberText(v));
+  }
+  for (const auto& [key, value] : s->lo) s->settings_overrides.push_back("lo." + key + "=" + value);
+  lo.RejectUnknownKeys();
   m.RejectUnknownKeys();
 }
 

@@ -68,6 +68,7 @@ void Sensors(YAML::Emitter& out, const SensorsConfig& s) {
   EmitNumber(out, "noise_std", s.camera.noise_std);
   EmitBool(out, "depth", s.camera.depth);
   EmitBool(out, "segmentation", s.camera.segmentation);
+  if (!s.camera.dropouts.empty()) Points(out, "dropouts", s.camera.dropouts);
   out << YAML::EndMap;
   out << YAML::Key << "imu" << YAML::Value << YAML::Flow << YAML::BeginMap;
   EmitNumber(out, "rate_hz", s.imu.rate_hz);
@@ -80,6 +81,10 @@ void Sensors(YAML::Emitter& out, const SensorsConfig& s) {
   EmitNumber(out, "rate_hz", s.joints.rate_hz);
   EmitNumber(out, "noise_rad", s.joints.noise_rad);
   EmitNumber(out, "resolution_rad", s.joints.resolution_rad);
+  out << YAML::EndMap;
+  out << YAML::Key << "touch" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  EmitNumber(out, "threshold_n", s.touch.threshold_n);
+  EmitNumber(out, "noise_n", s.touch.noise_n);
   out << YAML::EndMap;
   out << YAML::Key << "segmentation" << YAML::Value << YAML::Flow << YAML::BeginMap;
   EmitNumber(out, "miss_rate", s.segmentation.miss_rate);
@@ -159,6 +164,11 @@ void Slam(YAML::Emitter& out, const SlamConfig& s) {
   EmitNumber(out, "window_s", s.dynamic.window_s);
   EmitInt(out, "window_n", s.dynamic.window_n);
   out << YAML::EndMap;
+  if (!s.lo.empty()) {
+    out << YAML::Key << "lo" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    for (const auto& [key, value] : s.lo) out << YAML::Key << key << YAML::Value << value;
+    out << YAML::EndMap;
+  }
   out << YAML::EndMap;
 }
 

@@ -139,6 +139,23 @@ std::array<bool, kNumLegs> World::FootContacts() const {
   return c;
 }
 
+std::array<double, kNumLegs> World::FootNormalForces() const {
+  std::array<double, kNumLegs> f{};
+  const mjData* d = data_.get();
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& con = d->contact[i];
+    for (int leg = 0; leg < kNumLegs; ++leg) {
+      if ((con.geom1 == foot_geom_[leg] && !IsRobotGeom(con.geom2)) ||
+          (con.geom2 == foot_geom_[leg] && !IsRobotGeom(con.geom1))) {
+        mjtNum force[6];
+        mj_contactForce(model_.get(), d, i, force);  // contact frame: force[0] is the normal force
+        f[leg] += force[0];
+      }
+    }
+  }
+  return f;
+}
+
 Eigen::Vector3d World::FootPositionWorld(Leg leg) const {
   return Eigen::Map<const Eigen::Vector3d>(data_->site_xpos + 3 * foot_site_[static_cast<int>(leg)]);
 }

@@ -41,6 +41,7 @@ class World {
   std::array<double, kNumJoints> JointPositions() const;   // (rad)
   std::array<double, kNumJoints> JointVelocities() const;  // (rad/s)
   std::array<bool, kNumLegs> FootContacts() const;          // foot touches a non-robot geom
+  std::array<double, kNumLegs> FootNormalForces() const;    // contact normal force on each foot (N)
   Eigen::Vector3d FootPositionWorld(Leg leg) const;         // foot centre (m)
   Eigen::Vector3d FootVelocityWorld(Leg leg) const;         // foot centre velocity (m/s)
   // Velocity of the foot's material point at its lowest point (where it touches flat ground):

@@ -123,7 +123,7 @@ def urdf():
     for name, sx, sy in LEGS:
         out += [f'  <link name="{name}_thigh">', inertial(THIGH["mass"], (0, 0, THIGH["com"]), thi), '  </link>',
                 f'  <link name="{name}_shank">', inertial(SHANK["mass"], (0, 0, SHANK["com"]), shi), '  </link>',
-                f'  <link name="{name}_foot"/>',
+                f'  <link name="{name}_foot"><collision><geometry><sphere radius="{FOOT_R}"/></geometry></collision></link>',
                 f'  <joint name="{name}_hip" type="revolute"><parent link="trunk"/><child link="{name}_thigh"/>'
                 f'<origin xyz="{f(sx * HIP_X, sy * HIP_Y, HIP_Z)}" rpy="0 0 0"/><axis xyz="0 -1 0"/>'
                 f'<limit lower="{lo_h:.17g}" upper="{hi_h:.17g}" effort="{TORQUE}" velocity="20"/></joint>',

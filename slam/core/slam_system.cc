@@ -40,6 +40,8 @@ SlamSystem::~SlamSystem() {
   if (impl_) impl_->mapper.reset();
 }
 
+void SlamSystem::SetMotionPrior(const Eigen::Isometry3d& T_cur_last) { impl_->tracker.SetMotionPrior(T_cur_last); }
+
 TrackResult SlamSystem::Track(const StereoFrame& frame) {
   const auto t0 = std::chrono::steady_clock::now();
   Impl& m = *impl_;

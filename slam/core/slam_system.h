@@ -65,6 +65,12 @@ class SlamSystem {
   // uses left_rgb + right_rgb; rgbd input uses left_rgb + left_depth_m.
   TrackResult Track(const StereoFrame& frame);
 
+  // A motion prior for the next Track(): the camera's motion since the last tracked frame,
+  // T_cur_last (for example from leg odometry and the IMU, slam.mode full). It replaces the
+  // constant-velocity guess in tracking and carries the pose while vision fails (lost frames,
+  // a new map segment after loss starts from it). Used for one frame.
+  void SetMotionPrior(const Eigen::Isometry3d& T_cur_last);
+
   // Waits for the mapping thread (realtime mode) to finish its queue.
   void Finish();
 

@@ -230,7 +230,8 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     r.status = TrackStatus::kLost;
     lost_ = true;
     ++lost_frames_in_row_;
-    // No visual pose: carry the motion-model prediction so that the trajectory has no gap.
+    // No visual pose: carry the motion-model prediction (or the external motion prior) so that
+    // the trajectory has no gap.
     cur_.T_c_w = have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w;
     DropTemporaryPoints(&cur_);
     cur_.ClearMatches();

@@ -55,6 +55,13 @@ class Tracker {
     return kf;
   }
 
+  // Motion of the camera from the last frame to the next one (T_cur_last), used instead of the
+  // constant-velocity model for the next Track() only (SlamSystem::SetMotionPrior).
+  void SetMotionPrior(const Eigen::Isometry3d& T_cur_last) {
+    velocity_ = T_cur_last;
+    have_velocity_ = true;
+  }
+
   bool HasCamera() const { return have_camera_; }
   const StereoCamera& camera() const { return cam_; }
   void SetCamera(const StereoFrame& frame);

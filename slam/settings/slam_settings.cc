@@ -16,6 +16,7 @@ const std::vector<std::string> kInputs = {"stereo", "rgbd"};
 const std::vector<std::string> kMappingModes = {"sync", "realtime"};
 const std::vector<std::string> kModes = {"visual", "visual_dynamic", "full"};
 const std::vector<std::string> kDynamicMethods = {"none", "semantic", "paper", "adaptive"};
+const std::vector<std::string> kContactSources = {"schedule", "touch", "estimated"};
 
 // Ranges shared by several keys.
 const NumberRange kRatio = NumberRange::OpenClosed(0, 1);        // a share or a ratio test, (0, 1]
@@ -139,6 +140,25 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   m->RejectUnknownKeys();
 }
 
+void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
+  m->Choice("contact", &lo->contact, kContactSources);
+  m->Number("attitude_gain", &lo->attitude_gain, NumberRange::Closed(0, 100));
+  m->Number("gyro_bias_gain", &lo->gyro_bias_gain, NumberRange::Closed(0, 100));
+  m->Number("gravity_gate_mps2", &lo->gravity_gate_mps2, NumberRange::Positive());
+  m->Number("accel_noise", &lo->accel_noise, NumberRange::Positive());
+  m->Number("stance_foot_noise", &lo->stance_foot_noise, NumberRange::Positive());
+  m->Number("swing_foot_noise", &lo->swing_foot_noise, NumberRange::Positive());
+  m->Number("kin_position_noise_m", &lo->kin_position_noise_m, NumberRange::Positive());
+  m->Number("kin_velocity_noise_mps", &lo->kin_velocity_noise_mps, NumberRange::Positive());
+  m->Number("velocity_window_s", &lo->velocity_window_s, NumberRange::Closed(0, 1));
+  m->Number("touchdown_s", &lo->touchdown_s, NumberRange::Closed(0, 10));
+  m->Number("touchdown_inflation", &lo->touchdown_inflation, NumberRange::Closed(1, 1e6));
+  m->Number("slip_gate_chi2", &lo->slip_gate_chi2, NumberRange::Positive());
+  m->Number("contact_height_m", &lo->contact_height_m, NumberRange::Positive());
+  m->Integer("fusion_min_inliers", &lo->fusion_min_inliers, kCount0);
+  m->RejectUnknownKeys();
+}
+
 }  // namespace
 
 SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides) {
@@ -164,6 +184,8 @@ SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::st
   ReadMapping(&mapping, &s.mapping);
   YamlMapReader dynamic = top.Map("dynamic");
   ReadDynamic(&dynamic, &s.dynamic);
+  YamlMapReader lo = top.Map("lo");
+  ReadLegOdometry(&lo, &s.lo);
   top.RejectUnknownKeys();
 
   // The matcher searches right keypoints at the extractor's pyramid levels: the scales must agree.
@@ -271,6 +293,25 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitInt(out, "max_hamming", a.max_hamming);
   EmitNumber(out, "static_pose_min_share", a.static_pose_min_share);
   out << YAML::EndMap;
+  out << YAML::EndMap;
+
+  const LegOdometrySettings& lo = s.lo;
+  out << YAML::Key << "lo" << YAML::Value << YAML::BeginMap;
+  EmitWord(out, "contact", lo.contact);
+  EmitNumber(out, "attitude_gain", lo.attitude_gain);
+  EmitNumber(out, "gyro_bias_gain", lo.gyro_bias_gain);
+  EmitNumber(out, "gravity_gate_mps2", lo.gravity_gate_mps2);
+  EmitNumber(out, "accel_noise", lo.accel_noise);
+  EmitNumber(out, "stance_foot_noise", lo.stance_foot_noise);
+  EmitNumber(out, "swing_foot_noise", lo.swing_foot_noise);
+  EmitNumber(out, "kin_position_noise_m", lo.kin_position_noise_m);
+  EmitNumber(out, "kin_velocity_noise_mps", lo.kin_velocity_noise_mps);
+  EmitNumber(out, "velocity_window_s", lo.velocity_window_s);
+  EmitNumber(out, "touchdown_s", lo.touchdown_s);
+  EmitNumber(out, "touchdown_inflation", lo.touchdown_inflation);
+  EmitNumber(out, "slip_gate_chi2", lo.slip_gate_chi2);
+  EmitNumber(out, "contact_height_m", lo.contact_height_m);
+  EmitInt(out, "fusion_min_inliers", lo.fusion_min_inliers);
   out << YAML::EndMap;
 
   out << YAML::EndMap;

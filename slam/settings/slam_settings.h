@@ -81,6 +81,30 @@ struct DynamicSettings {
   double forget_s = 2.0;             // an object unseen this long starts a new history (s)
 };
 
+// Leg odometry + IMU Kalman filter (paper eqs. 5-7), run in mode full. slam/lo/leg_odometry.h
+// says how each value enters the filter.
+struct LegOdometrySettings {
+  std::string contact = "touch";     // schedule (gait's planned stance) | touch (foot sensors) | estimated
+  // Attitude: complementary filter on SO(3), gyro integration with a gravity correction from the
+  // accelerometer (Mahony's form) and an integral term that estimates the gyro bias.
+  double attitude_gain = 0.5;        // gravity correction of roll and pitch (1/s)
+  double gyro_bias_gain = 0.005;     // integral gain estimating the gyro bias (1/s^2)
+  double gravity_gate_mps2 = 1.5;    // no correction when |accel| differs from g by more (m/s^2)
+  // Kalman filter of eq. 5 (state: body position, velocity, four feet in the world).
+  double accel_noise = 0.3;          // acceleration input noise, white (m/s^2/sqrt(Hz))
+  double stance_foot_noise = 0.002;  // random walk of a stance foot (m/sqrt(s))
+  double swing_foot_noise = 1.0;     // random walk of a swing or slipping foot (m/sqrt(s))
+  double kin_position_noise_m = 0.003;    // foot-minus-body position from kinematics (m)
+  double kin_velocity_noise_mps = 0.02;   // body velocity through a stance foot, over the window (m/s)
+  double velocity_window_s = 0.02;   // that velocity is the encoder positions' change over this (s)
+  double touchdown_s = 0.03;         // after touch-down a foot's measurements are inflated this long (s)
+  double touchdown_inflation = 10;   // by this factor on their standard deviation (ratio)
+  // Slip: a stance foot whose velocity innovation fails this gate is slipping for that sample.
+  double slip_gate_chi2 = 16.27;     // Mahalanobis gate, chi-square 3 dof at 99.9% (1)
+  double contact_height_m = 0.006;   // estimated: feet within this of the lowest foot are in contact (m)
+  int fusion_min_inliers = 50;       // full: a frame tracked with this many inliers corrects the filter (count)
+};
+
 struct SlamSettings {
   std::string source_file;           // the YAML the settings came from ("" = built-in defaults)
   std::string mode = "full";         // visual | visual_dynamic (plus dynamic objects) | full (plus leg odometry)
@@ -92,6 +116,7 @@ struct SlamSettings {
   TrackingSettings tracking;
   MappingSettings mapping;
   DynamicSettings dynamic;
+  LegOdometrySettings lo;
 };
 
 // Reads settings from `path`. Keys not in the file keep their defaults; `overrides` are

@@ -1,0 +1,41 @@
+#pragma once
+// Fusion of the visual estimate with leg odometry + IMU (slam.mode full). Per camera frame:
+//  - before tracking, the filter's motion of the camera since the last frame becomes the
+//    tracker's motion prior (instead of the constant-velocity guess); while vision fails it
+//    carries the pose, and a new map segment after a loss starts from it;
+//  - after tracking, a frame tracked with enough inliers corrects the filter: its position and
+//    orientation are set to the visual ones (vision is about ten times more accurate here).
+// The filter keeps running on every IMU and encoder sample in between.
+#include <optional>
+
+#include <Eigen/Geometry>
+
+#include "slam/core/slam_system.h"
+#include "slam/lo/leg_odometry.h"
+
+namespace viqu::slam {
+
+class VisualLegFusion {
+ public:
+  // `lo` must be started (anchored at the same world pose as the map); T_body_cam: the left
+  // camera's optical frame in the trunk (IMU) frame.
+  VisualLegFusion(lo::LegOdometry* lo, const Eigen::Isometry3d& T_body_cam, int min_inliers)
+      : lo_(lo), T_body_cam_(T_body_cam), min_inliers_(min_inliers) {}
+
+  // Gives `system` the filter's camera motion since the last frame (nothing before the first).
+  void BeforeTrack(SlamSystem* system);
+  // Corrects the filter with the frame's visual pose when it was tracked well.
+  void AfterTrack(const TrackResult& r);
+
+  int corrections() const { return corrections_; }
+  int frames_carried() const { return carried_; }  // frames without a visual correction
+
+ private:
+  lo::LegOdometry* lo_;
+  Eigen::Isometry3d T_body_cam_;
+  int min_inliers_;
+  std::optional<Eigen::Isometry3d> last_T_w_c_;  // the filter's camera pose at the last frame
+  int corrections_ = 0, carried_ = 0;
+};
+
+}  // namespace viqu::slam

@@ -1,0 +1,49 @@
+#include "slam/lo/attitude_filter.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace viqu::lo {
+namespace {
+
+// Rotation by the rotation vector w (rad) as a unit quaternion.
+Eigen::Quaterniond Exp(const Eigen::Vector3d& w) {
+  const double angle = w.norm();
+  if (angle < 1e-12) return Eigen::Quaterniond(1, 0.5 * w.x(), 0.5 * w.y(), 0.5 * w.z()).normalized();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, w / angle));
+}
+
+}  // namespace
+
+void AttitudeFilter::Reset(int64_t t_ns, const Eigen::Quaterniond& q_w_b, const Eigen::Vector3d& gyro_bias) {
+  q_w_b_ = q_w_b.normalized();
+  bias_ = gyro_bias;
+  last_t_ns_ = t_ns;
+  last_gyro_ = bias_;  // no rotation before the first sample
+  correction_.setZero();
+  corrected_ = false;
+}
+
+void AttitudeFilter::Add(const ImuSample& s) {
+  if (last_t_ns_ && s.t_ns < *last_t_ns_) throw std::invalid_argument("IMU time went backwards");
+  const double dt = last_t_ns_ ? (s.t_ns - *last_t_ns_) * 1e-9 : 0.0;
+  // Integrate the held rate (bias-corrected, plus the last correction) over the interval.
+  if (dt > 0) q_w_b_ = (q_w_b_ * Exp((last_gyro_ - bias_ + correction_) * dt)).normalized();
+  last_t_ns_ = s.t_ns;
+  last_gyro_ = s.gyro_i;
+
+  // Gravity correction: the accelerometer's direction is "up" in the body frame when the trunk
+  // is not accelerating; the cross product with the predicted up gives the tilt error.
+  correction_.setZero();
+  const double norm = s.accel_i.norm();
+  corrected_ = std::abs(norm - opt_.gravity_mps2) <= opt_.gravity_gate_mps2 && norm > 0;
+  if (!corrected_) return;
+  const Eigen::Vector3d up_measured = s.accel_i / norm;
+  const Eigen::Vector3d up_predicted = q_w_b_.conjugate() * Eigen::Vector3d::UnitZ();
+  // A body rotation rate along `error` turns the predicted up towards the measured one.
+  const Eigen::Vector3d error = up_measured.cross(up_predicted);
+  correction_ = opt_.attitude_gain * error;
+  bias_ -= opt_.gyro_bias_gain * error * dt;
+}
+
+}  // namespace viqu::lo

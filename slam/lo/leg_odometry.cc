@@ -1,0 +1,179 @@
+#include "slam/lo/leg_odometry.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "common/errors.h"
+
+namespace viqu::lo {
+namespace {
+
+// Gravity in the world frame (m/s^2): a constant of the world, not a tuning parameter.
+constexpr double kGravity = 9.81;
+
+// Initial standard deviations of the filter: the start pose is the anchor (known), the robot is
+// at rest, the feet are placed by the first kinematics. Small numbers, not tuning parameters.
+constexpr double kStartPositionStd = 1e-3;  // (m)
+constexpr double kStartVelocityStd = 0.05;  // (m/s)
+constexpr double kStartFootStd = 0.01;      // (m)
+
+AttitudeFilterOptions AttitudeOptionsOf(const slam::LegOdometrySettings& s) {
+  AttitudeFilterOptions o;
+  o.attitude_gain = s.attitude_gain;
+  o.gyro_bias_gain = s.gyro_bias_gain;
+  o.gravity_gate_mps2 = s.gravity_gate_mps2;
+  o.gravity_mps2 = kGravity;
+  return o;
+}
+
+}  // namespace
+
+LegOdometry::LegOdometry(const slam::LegOdometrySettings& settings, const kin::LegKinematics& kin)
+    : settings_(settings), kin_(kin), attitude_(AttitudeOptionsOf(settings)) {
+  if (settings_.contact != "schedule" && settings_.contact != "touch" && settings_.contact != "estimated") {
+    throw InputError("lo.contact must be schedule, touch or estimated, not '" + settings_.contact + "'");
+  }
+}
+
+void LegOdometry::Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body) {
+  attitude_.Reset(t_ns, Eigen::Quaterniond(T_w_body.linear()));
+  std::array<Eigen::Vector3d, kNumLegs> feet;
+  feet.fill(T_w_body.translation());
+  kf_.Reset(T_w_body.translation(), Eigen::Vector3d::Zero(), feet, kStartPositionStd, kStartVelocityStd, kStartFootStd);
+  last_imu_ns_.reset();
+  last_accel_w_.setZero();
+  started_ = true;
+  feet_placed_ = false;
+  window_.clear();
+  roll_w_.fill(Eigen::Vector3d::Zero());
+  for (FootStatus& f : feet_) f = FootStatus{true, false, 0, t_ns};
+}
+
+Eigen::Isometry3d LegOdometry::T_w_body() const {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = attitude_.q_w_b().toRotationMatrix();
+  T.translation() = kf_.position();
+  return T;
+}
+
+void LegOdometry::CorrectPose(const Eigen::Isometry3d& T_w_body) {
+  if (!started_) return;
+  kf_.Translate(T_w_body.translation() - kf_.position());
+  attitude_.SetOrientation(Eigen::Quaterniond(T_w_body.linear()));
+  // The window's body positions move with the correction, so that the next windowed velocity
+  // does not see it as motion.
+  window_.clear();
+}
+
+void LegOdometry::AddImu(const ImuSample& s) {
+  if (!started_) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  attitude_.Add(s);
+  // The previous sample's acceleration held over the interval, as the gyro is.
+  const double dt = last_imu_ns_ ? (s.t_ns - *last_imu_ns_) * 1e-9 : 0.0;
+  std::array<double, kNumLegs> foot_noise;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const bool pinned = feet_[i].contact && !feet_[i].slipping;
+    foot_noise[i] = pinned ? settings_.stance_foot_noise : settings_.swing_foot_noise;
+  }
+  std::array<Eigen::Vector3d, kNumLegs> foot_vel;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const bool pinned = feet_[i].contact && !feet_[i].slipping;
+    foot_vel[i] = pinned ? roll_w_[i] : Eigen::Vector3d::Zero();
+  }
+  kf_.Predict(dt, last_accel_w_, settings_.accel_noise, foot_noise, foot_vel);
+  last_imu_ns_ = s.t_ns;
+  last_accel_w_ = attitude_.q_w_b() * s.accel_i - Eigen::Vector3d(0, 0, kGravity);
+  update_ms_sum_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void LegOdometry::AddContact(const ContactReading& c) { reported_stance_ = c.stance; }
+
+std::array<bool, kNumLegs> LegOdometry::ContactOf(const std::array<Eigen::Vector3d, kNumLegs>& rel_w) const {
+  if (settings_.contact != "estimated") return reported_stance_;
+  // Estimated: the feet lowest along gravity are on the ground (flat-ground assumption; a slope
+  // across the trunk's length tilts this, which is why it is not the default).
+  double lowest = rel_w[0].z();
+  for (const Eigen::Vector3d& r : rel_w) lowest = std::min(lowest, r.z());
+  std::array<bool, kNumLegs> c{};
+  for (int i = 0; i < kNumLegs; ++i) c[i] = rel_w[i].z() - lowest <= settings_.contact_height_m;
+  return c;
+}
+
+void LegOdometry::AddJoints(const JointState& js) {
+  if (!started_) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Eigen::Matrix3d R = attitude_.q_w_b().toRotationMatrix();
+  const Eigen::Vector3d w_b = attitude_.angular_velocity();
+  std::array<Eigen::Vector3d, kNumLegs> rel_w, vel_w;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg leg = static_cast<Leg>(i);
+    const double q1 = js.position_rad[2 * i], q2 = js.position_rad[2 * i + 1];
+    const Eigen::Vector3d r = kin_.FootInTrunk(leg, q1, q2);
+    const Eigen::Vector2d qd(js.velocity_rad_s[2 * i], js.velocity_rad_s[2 * i + 1]);
+    rel_w[i] = R * r;
+    // A foot on the ground rolls: its centre moves at w_foot x (radius up), with the foot turning
+    // at the trunk's rate plus the joint rates. The centre's velocity is also
+    // v + R (w x r + J qd), so the body moves at that rolling velocity minus R (w x r + J qd).
+    const Eigen::Vector3d w_foot_w = R * (w_b + kin_.ShankAngularVelocity(leg, qd.x(), qd.y()));
+    roll_w_[i] = w_foot_w.cross(Eigen::Vector3d(0, 0, kin_.foot_radius()));
+    vel_w[i] = roll_w_[i] - R * (w_b.cross(r) + kin_.FootJacobian(leg, q1, q2) * qd);
+  }
+  if (!feet_placed_) {
+    // The first reading places the feet where the kinematics say, around the anchored body.
+    std::array<Eigen::Vector3d, kNumLegs> feet;
+    for (int i = 0; i < kNumLegs; ++i) feet[i] = kf_.position() + rel_w[i];
+    kf_.Reset(kf_.position(), kf_.velocity(), feet, kStartPositionStd, kStartVelocityStd, kStartFootStd);
+    feet_placed_ = true;
+  }
+
+  const std::array<bool, kNumLegs> contact = ContactOf(rel_w);
+  const int64_t touchdown_ns = std::llround(settings_.touchdown_s * 1e9);
+  const int64_t window_ns = std::llround(settings_.velocity_window_s * 1e9);
+  // The reading at least one window before this one (the oldest kept if none is that old).
+  const WindowSample* old = nullptr;
+  for (const WindowSample& w : window_) {
+    if (w.t_ns <= js.t_ns - window_ns) old = &w;
+  }
+  if (!old && !window_.empty()) old = &window_.front();
+  const Eigen::Matrix3d P_vv = kf_.covariance().block<3, 3>(3, 3);
+  // Gate every stance foot against the prediction before any of them updates it.
+  std::array<std::optional<Eigen::Vector3d>, kNumLegs> v_foot;  // body velocity through each foot, over the window
+  for (int i = 0; i < kNumLegs; ++i) {
+    FootStatus& f = feet_[i];
+    if (contact[i] && !f.contact) f.touchdown_ns = js.t_ns;
+    f.contact = contact[i];
+    f.slipping = false;
+    f.mahalanobis2 = 0;
+    if (!f.contact || !old || old->t_ns < f.touchdown_ns || old->t_ns >= js.t_ns) continue;
+    // Over the window the foot, if it held, moved only by rolling, so the body moved by the
+    // foot's rolling minus the change of the foot-minus-body vector.
+    const double dt = (js.t_ns - old->t_ns) * 1e-9;
+    v_foot[i] = 0.5 * (roll_w_[i] + old->roll_w[i]) - (rel_w[i] - old->rel_w[i]) / dt;
+    if (js.t_ns - f.touchdown_ns < touchdown_ns) continue;  // settling: no slip decision yet
+    // The filter's own mean velocity over the same window (its prediction for now).
+    const Eigen::Vector3d v_mean = (kf_.position() - old->p_w) / dt;
+    Eigen::Matrix3d S = P_vv;
+    S.diagonal().array() += settings_.kin_velocity_noise_mps * settings_.kin_velocity_noise_mps;
+    const Eigen::Vector3d y = *v_foot[i] - v_mean;
+    f.mahalanobis2 = y.dot(S.ldlt().solve(y));
+    f.slipping = f.mahalanobis2 > settings_.slip_gate_chi2;
+  }
+  for (int i = 0; i < kNumLegs; ++i) {
+    const FootStatus& f = feet_[i];
+    const bool settling = f.contact && js.t_ns - f.touchdown_ns < touchdown_ns;
+    const double inflate = settling ? settings_.touchdown_inflation : 1.0;
+    kf_.UpdateFootPosition(i, rel_w[i], settings_.kin_position_noise_m * inflate);
+    if (f.contact && !f.slipping && v_foot[i]) kf_.UpdateVelocity(*v_foot[i], settings_.kin_velocity_noise_mps * inflate);
+  }
+  // Keep the readings of the last window (and the one just before it).
+  window_.push_back(WindowSample{js.t_ns, kf_.position(), rel_w, roll_w_});
+  while (window_.size() > 2 && window_[1].t_ns <= js.t_ns - window_ns) window_.pop_front();
+  update_ms_sum_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  ++updates_;
+}
+
+}  // namespace viqu::lo

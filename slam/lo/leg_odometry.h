@@ -1,0 +1,89 @@
+#pragma once
+// Leg odometry with the IMU (paper eqs. 5-7): the attitude filter, the linear Kalman filter of
+// eq. 5, contact from the configured source, and the slip gate. Inputs are the measurement
+// structs only (IMU samples, encoder readings, contact readings); the leg kinematics come from
+// the URDF through kinematics/. JointState::contact is simulator truth and is never read here.
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <optional>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "kinematics/leg_kinematics.h"
+#include "slam/lo/attitude_filter.h"
+#include "slam/lo/leg_imu_kf.h"
+#include "slam/measurements/contact_reading.h"
+#include "slam/measurements/ground_truth_pose.h"
+#include "slam/measurements/imu_sample.h"
+#include "slam/measurements/joint_state.h"
+#include "slam/settings/slam_settings.h"
+
+namespace viqu::lo {
+
+// What the estimator concluded about one foot at the last encoder reading.
+struct FootStatus {
+  bool contact = false;          // in contact by the configured source
+  bool slipping = false;         // in contact, but its velocity failed the slip gate
+  double mahalanobis2 = 0;       // squared Mahalanobis distance of its velocity innovation (0 in swing and settling)
+  int64_t touchdown_ns = 0;      // time of its last touch-down (ns)
+};
+
+class LegOdometry {
+ public:
+  // Throws InputError for an unknown contact source.
+  LegOdometry(const slam::LegOdometrySettings& settings, const kin::LegKinematics& kin);
+
+  // Anchors the estimate: body pose in the world at t_ns, at rest. The feet start where the
+  // kinematics of the first encoder reading put them.
+  void Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body);
+
+  // One IMU sample: attitude update, then the filter's prediction up to its time.
+  void AddImu(const ImuSample& s);
+  // Planned stance or touch sensors (contact: schedule | touch); ignored for estimated contact.
+  void AddContact(const ContactReading& c);
+  // One encoder reading: the filter's update with every foot's kinematics.
+  void AddJoints(const JointState& js);
+
+  // A pose from elsewhere (the visual estimate, slam.mode full) replaces the estimate: the
+  // position moves the body and the feet together, the orientation replaces the attitude's.
+  void CorrectPose(const Eigen::Isometry3d& T_w_body);
+
+  bool started() const { return started_; }
+  Eigen::Isometry3d T_w_body() const;   // current estimate of the trunk (IMU) pose
+  Eigen::Vector3d velocity() const { return kf_.velocity(); }
+  const std::array<FootStatus, kNumLegs>& feet() const { return feet_; }
+  const LegImuKf& filter() const { return kf_; }
+  const AttitudeFilter& attitude() const { return attitude_; }
+  // Mean time of one AddImu + AddJoints pair so far (ms), for the run summary.
+  double mean_update_ms() const { return updates_ ? update_ms_sum_ / updates_ : 0.0; }
+
+ private:
+  std::array<bool, kNumLegs> ContactOf(const std::array<Eigen::Vector3d, kNumLegs>& rel_w) const;
+
+  slam::LegOdometrySettings settings_;
+  const kin::LegKinematics& kin_;
+  AttitudeFilter attitude_;
+  LegImuKf kf_;
+  bool started_ = false;
+  bool feet_placed_ = false;
+  std::optional<int64_t> last_imu_ns_;
+  Eigen::Vector3d last_accel_w_ = Eigen::Vector3d::Zero();  // held world acceleration (m/s^2, gravity removed)
+  std::array<bool, kNumLegs> reported_stance_{{true, true, true, true}};
+  std::array<Eigen::Vector3d, kNumLegs> roll_w_{};  // foot centre velocity from rolling, last reading (m/s)
+  // Encoder readings of the last velocity window: the body's velocity through a foot is taken
+  // over the window (a single finite difference of encoder positions is too noisy).
+  struct WindowSample {
+    int64_t t_ns = 0;
+    Eigen::Vector3d p_w;                             // filter position after the reading (m)
+    std::array<Eigen::Vector3d, kNumLegs> rel_w;     // foot minus body, world axes (m)
+    std::array<Eigen::Vector3d, kNumLegs> roll_w;    // rolling velocity of each foot centre (m/s)
+  };
+  std::deque<WindowSample> window_;
+  std::array<FootStatus, kNumLegs> feet_{};
+  double update_ms_sum_ = 0;
+  long updates_ = 0;
+};
+
+}  // namespace viqu::lo

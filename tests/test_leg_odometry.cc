@@ -1,0 +1,305 @@
+// Leg odometry + IMU (slam/lo): the Kalman filter of eq. 5 against hand-worked numbers, the
+// attitude filter, and the contact and slip logic on synthetic foot tracks of the rat's legs
+// (URDF kinematics, no simulator).
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "apps/slip_score.h"
+#include "kinematics/leg_kinematics.h"
+#include "slam/lo/attitude_filter.h"
+#include "slam/lo/leg_imu_kf.h"
+#include "slam/lo/leg_odometry.h"
+
+namespace viqu {
+namespace {
+
+using lo::LegImuKf;
+
+std::array<Eigen::Vector3d, kNumLegs> FeetAround(const Eigen::Vector3d& p) {
+  return {p + Eigen::Vector3d(0.05, 0.04, -0.07), p + Eigen::Vector3d(0.05, -0.04, -0.07),
+          p + Eigen::Vector3d(-0.05, 0.04, -0.07), p + Eigen::Vector3d(-0.05, -0.04, -0.07)};
+}
+
+TEST(LegImuKf, ConstantAccelerationIsIntegratedExactly) {
+  LegImuKf kf;
+  kf.Reset(Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(0.1, 0, 0), FeetAround(Eigen::Vector3d(1, 2, 3)), 0.01, 0.01, 0.01);
+  const Eigen::Vector3d a(0.5, -0.2, 0.1);
+  const std::array<double, kNumLegs> foot_noise{0.1, 0.1, 0.1, 0.1};
+  for (int k = 0; k < 200; ++k) kf.Predict(0.005, a, 0.3, foot_noise);
+  // p(t) = p0 + v0 t + a t^2 / 2 and v(t) = v0 + a t at t = 1 s, to rounding.
+  EXPECT_NEAR((kf.position() - (Eigen::Vector3d(1.1, 2, 3) + 0.5 * a)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((kf.velocity() - (Eigen::Vector3d(0.1, 0, 0) + a)).norm(), 0.0, 1e-12);
+  // The feet do not move in prediction.
+  EXPECT_NEAR((kf.foot(2) - FeetAround(Eigen::Vector3d(1, 2, 3))[2]).norm(), 0.0, 1e-15);
+  // Covariance of a white-acceleration random walk over T = 1 s from the initial one:
+  // Pvv = 0.01^2 + q T, Ppp = 0.01^2 + 0.01^2 T^2 + q T^3 / 3 (q = 0.09 m^2/s^3), exact for any
+  // step size since each step adds the exact discrete noise.
+  const double q = 0.09;
+  EXPECT_NEAR(kf.covariance()(3, 3), 1e-4 + q, 1e-12);
+  EXPECT_NEAR(kf.covariance()(0, 0), 1e-4 + 1e-4 + q / 3, 1e-12);
+  EXPECT_NEAR(kf.covariance()(0, 3), 1e-4 + q / 2, 1e-12);
+  EXPECT_NEAR(kf.covariance()(6, 6), 1e-4 + 0.01, 1e-12);  // foot random walk 0.1^2 * 1 s
+}
+
+TEST(LegImuKf, AFootMeasurementPullsBodyAndFootAsComputedByHand) {
+  LegImuKf kf;
+  const Eigen::Vector3d p(0, 0, 0.07);
+  auto feet = FeetAround(p);
+  // Body position std 0.02 m, foot std 0.01 m, measurement std 0.01 m, no correlations.
+  kf.Reset(p, Eigen::Vector3d::Zero(), feet, 0.02, 0.1, 0.01);
+  // The kinematics say foot 0 is 0.012 m further ahead of the body than the state has it.
+  const Eigen::Vector3d rel = feet[0] - p + Eigen::Vector3d(0.012, 0, 0);
+  kf.UpdateFootPosition(0, rel, 0.01);
+  // Per axis: S = 0.02^2 + 0.01^2 + 0.01^2 = 6e-4; body moves by -0.02^2/S * y = -0.008 m,
+  // foot 0 by 0.01^2/S * y = 0.002 m; the other feet and the velocity are untouched.
+  EXPECT_NEAR(kf.position().x(), -0.008, 1e-12);
+  EXPECT_NEAR(kf.foot(0).x() - feet[0].x(), 0.002, 1e-12);
+  EXPECT_NEAR((kf.foot(1) - feet[1]).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(kf.velocity().norm(), 0.0, 1e-15);
+  // Posterior variance of the body along x: 4e-4 - (4e-4)^2 / 6e-4.
+  EXPECT_NEAR(kf.covariance()(0, 0), 4e-4 - 16e-8 / 6e-4, 1e-15);
+  // y and z unchanged in value (zero innovation) but their variance shrank alike.
+  EXPECT_NEAR(kf.position().y(), 0.0, 1e-15);
+  EXPECT_NEAR(kf.covariance()(1, 1), 4e-4 - 16e-8 / 6e-4, 1e-15);
+}
+
+TEST(LegImuKf, AVelocityMeasurementAndItsMahalanobisDistance) {
+  LegImuKf kf;
+  kf.Reset(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), FeetAround(Eigen::Vector3d::Zero()), 0.01, 0.03, 0.01);
+  const Eigen::Vector3d v(0.05, 0, 0);
+  // d^2 = 0.05^2 / (0.03^2 + 0.04^2) = 1.
+  EXPECT_NEAR(kf.VelocityMahalanobis2(v, 0.04), 1.0, 1e-12);
+  kf.UpdateVelocity(v, 0.04);
+  // Gain 0.03^2 / (0.03^2 + 0.04^2) = 0.36.
+  EXPECT_NEAR(kf.velocity().x(), 0.36 * 0.05, 1e-12);
+  EXPECT_NEAR(kf.position().x(), 0.0, 1e-15);  // uncorrelated with the velocity at the start
+}
+
+TEST(LegImuKf, AStationaryRobotStaysPutUnderNoise) {
+  // 20 s at 200 Hz: accelerometer noise 0.02 m/s^2 and bias 0.02 m/s^2 on x, kinematics noise
+  // 3 mm and 0.05 m/s, all four feet standing. The filter must stay within a few millimetres.
+  LegImuKf kf;
+  const Eigen::Vector3d p(0, 0, 0.07);
+  const auto feet = FeetAround(p);
+  kf.Reset(p, Eigen::Vector3d::Zero(), feet, 1e-3, 0.05, 0.01);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> n(0, 1);
+  const std::array<double, kNumLegs> stance{0.002, 0.002, 0.002, 0.002};
+  double worst = 0;
+  Eigen::Vector3d v_sum = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4000; ++k) {
+    const Eigen::Vector3d a = Eigen::Vector3d(0.02, 0, 0) + 0.02 * Eigen::Vector3d(n(rng), n(rng), n(rng));
+    kf.Predict(0.005, a, 0.3, stance);
+    for (int i = 0; i < kNumLegs; ++i) {
+      kf.UpdateFootPosition(i, feet[i] - p + 0.003 * Eigen::Vector3d(n(rng), n(rng), n(rng)), 0.003);
+      kf.UpdateVelocity(0.05 * Eigen::Vector3d(n(rng), n(rng), n(rng)), 0.05);
+    }
+    worst = std::max(worst, (kf.position() - p).norm());
+    if (k >= 3600) v_sum += kf.velocity();
+  }
+  const double v_mean = v_sum.norm() / 400;
+  std::printf("stationary 20 s: worst position error %.2f mm, mean velocity over the last 2 s %.4f m/s\n",
+              worst * 1e3, v_mean);
+  // The feet random-walk at 2 mm/sqrt(s) by model, so a few mm is the filter's own uncertainty.
+  EXPECT_LT(worst, 0.01);
+  EXPECT_LT(v_mean, 0.01);
+}
+
+TEST(AttitudeFilter, IntegratesTheGyroExactlyWithoutCorrection) {
+  lo::AttitudeFilterOptions o;
+  o.attitude_gain = 0;
+  o.gyro_bias_gain = 0;
+  lo::AttitudeFilter f(o);
+  f.Reset(0, Eigen::Quaterniond::Identity());
+  for (int k = 0; k <= 400; ++k) {
+    ImuSample s;
+    s.t_ns = k * 5'000'000LL;
+    s.gyro_i = Eigen::Vector3d(0, 0, 0.5);
+    s.accel_i = Eigen::Vector3d(0, 0, 9.81);
+    f.Add(s);
+  }
+  // 2 s at 0.5 rad/s about z: yaw 1 rad.
+  const Eigen::AngleAxisd aa(f.q_w_b());
+  EXPECT_NEAR(aa.angle(), 1.0, 1e-9);
+  EXPECT_NEAR(aa.axis().z(), 1.0, 1e-9);
+}
+
+TEST(AttitudeFilter, GravityCorrectsTiltAndEstimatesTheGyroBias) {
+  lo::AttitudeFilterOptions o;
+  // Bias gain 0.02 1/s^2 with gain 0.5 1/s: the slow pole of s^2 + 0.5 s + 0.02 is at 0.044 1/s,
+  // so 120 s is more than 5 time constants.
+  o.attitude_gain = 0.5;
+  o.gyro_bias_gain = 0.02;
+  lo::AttitudeFilter f(o);
+  // Start 5 degrees off in roll; the gyro reads a bias of 0.01 rad/s about x and y while level.
+  f.Reset(0, Eigen::Quaterniond(Eigen::AngleAxisd(5 * M_PI / 180, Eigen::Vector3d::UnitX())));
+  for (int k = 0; k <= 200 * 120; ++k) {
+    ImuSample s;
+    s.t_ns = k * 5'000'000LL;
+    s.gyro_i = Eigen::Vector3d(0.01, 0.01, 0);
+    s.accel_i = Eigen::Vector3d(0, 0, 9.81);
+    f.Add(s);
+  }
+  const Eigen::Vector3d up = f.q_w_b().conjugate() * Eigen::Vector3d::UnitZ();
+  const double tilt_deg = std::acos(std::min(1.0, up.z())) * 180 / M_PI;
+  std::printf("after 120 s: tilt %.4f deg, bias estimate (%.5f, %.5f, %.5f) rad/s\n", tilt_deg, f.gyro_bias().x(),
+              f.gyro_bias().y(), f.gyro_bias().z());
+  EXPECT_LT(tilt_deg, 0.05);
+  EXPECT_NEAR(f.gyro_bias().x(), 0.01, 5e-4);
+  EXPECT_NEAR(f.gyro_bias().y(), 0.01, 5e-4);
+  EXPECT_NEAR(f.gyro_bias().z(), 0.0, 1e-9);  // not observable from gravity while level
+}
+
+TEST(AttitudeFilter, NoCorrectionFromAJolt) {
+  lo::AttitudeFilter f{lo::AttitudeFilterOptions{}};
+  f.Reset(0, Eigen::Quaterniond::Identity());
+  ImuSample s;
+  s.accel_i = Eigen::Vector3d(5, 0, 9.81);  // 5 m/s^2 forward: |a| - g = 1.2 m/s^2 < 1.5 gate
+  f.Add(s);
+  EXPECT_TRUE(f.corrected_last());
+  s.t_ns = 5'000'000;
+  s.accel_i = Eigen::Vector3d(8, 0, 9.81);  // |a| - g = 2.85 m/s^2: outside the gate
+  f.Add(s);
+  EXPECT_FALSE(f.corrected_last());
+}
+
+// A synthetic robot standing still on the URDF's legs: level trunk 0.075 m up, feet on the floor.
+class SyntheticStance : public ::testing::Test {
+ protected:
+  SyntheticStance() : kin_(kin::LegKinematics::FromUrdfFile(std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.urdf")) {
+    for (int i = 0; i < kNumLegs; ++i) {
+      const Leg leg = static_cast<Leg>(i);
+      const Eigen::Vector3d hip = kin_.chain(leg).T_trunk_hip.translation();
+      feet_body_[i] = Eigen::Vector3d(hip.x(), hip.y(), -0.075 + 0.006);
+    }
+  }
+
+  // Runs `seconds` with foot `slip_leg` (-1: none) sliding backwards along the floor at
+  // `slip_mps` from t = 1 s on, while the schedule reports all four feet in stance. Returns the
+  // estimator's body position error (m) and counts the samples flagged slipping per foot.
+  double Run(lo::LegOdometry* lo, double seconds, int slip_leg, double slip_mps, std::array<int, kNumLegs>* flagged) {
+    const Eigen::Isometry3d T = Eigen::Translation3d(0, 0, 0.075) * Eigen::Isometry3d::Identity();
+    lo->Start(0, T);
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> n(0, 1);
+    std::array<Eigen::Vector3d, kNumLegs> feet = feet_body_;
+    flagged->fill(0);
+    const int steps = static_cast<int>(seconds * 200);
+    std::array<double, kNumJoints> last_q{};
+    for (int k = 0; k <= steps; ++k) {
+      const int64_t t = k * 5'000'000LL;
+      const double t_s = t * 1e-9;
+      Eigen::Vector3d foot_vel = Eigen::Vector3d::Zero();
+      if (slip_leg >= 0 && t_s >= 1.0) foot_vel = Eigen::Vector3d(-slip_mps, 0, 0);
+      if (slip_leg >= 0 && k > 0) feet[slip_leg] += foot_vel * 0.005;
+      ImuSample imu;
+      imu.t_ns = t;
+      imu.accel_i = Eigen::Vector3d(0, 0, 9.81) + 0.02 * Eigen::Vector3d(n(rng), n(rng), n(rng));
+      imu.gyro_i = 0.002 * Eigen::Vector3d(n(rng), n(rng), n(rng));
+      lo->AddImu(imu);
+      lo->AddContact(ContactReading{t, {true, true, true, true}});
+      JointState js;
+      js.t_ns = t;
+      for (int i = 0; i < kNumLegs; ++i) {
+        double q1, q2;
+        EXPECT_TRUE(kin_.Inverse(static_cast<Leg>(i), feet[i], &q1, &q2));
+        js.position_rad[2 * i] = q1 + 0.001 * n(rng);
+        js.position_rad[2 * i + 1] = q2 + 0.001 * n(rng);
+        for (int j = 0; j < 2; ++j) {
+          js.velocity_rad_s[2 * i + j] = k == 0 ? 0.0 : (js.position_rad[2 * i + j] - last_q[2 * i + j]) / 0.005;
+        }
+      }
+      last_q = js.position_rad;
+      lo->AddJoints(js);
+      for (int i = 0; i < kNumLegs; ++i) (*flagged)[i] += lo->feet()[i].slipping;
+    }
+    return (lo->T_w_body().translation() - T.translation()).norm();
+  }
+
+  kin::LegKinematics kin_;
+  std::array<Eigen::Vector3d, kNumLegs> feet_body_;
+};
+
+TEST_F(SyntheticStance, StandingStillStaysPutWithoutSlipFlags) {
+  slam::LegOdometrySettings s;
+  lo::LegOdometry lo(s, kin_);
+  std::array<int, kNumLegs> flagged;
+  const double err = Run(&lo, 10, -1, 0, &flagged);
+  std::printf("standing 10 s: position error %.2f mm, slip flags %d %d %d %d\n", err * 1e3, flagged[0], flagged[1],
+              flagged[2], flagged[3]);
+  EXPECT_LT(err, 0.005);
+  for (int f : flagged) EXPECT_LE(f, 2);  // at most a chance flag or two in 2000 samples (gate 99.9%)
+}
+
+TEST_F(SyntheticStance, ASlidingStanceFootIsFlaggedAndGatedOut) {
+  slam::LegOdometrySettings s;
+  lo::LegOdometry gated(s, kin_);
+  std::array<int, kNumLegs> flagged;
+  // Front-left foot slides 0.2 m/s for 0.15 s (3 cm) while the schedule says stance.
+  const double err_gated = Run(&gated, 1.15, 0, 0.2, &flagged);
+  std::printf("sliding FL: flagged %d %d %d %d of 30 slip samples, error %.2f mm\n", flagged[0], flagged[1], flagged[2],
+              flagged[3], err_gated * 1e3);
+  EXPECT_GE(flagged[0], 20);
+  EXPECT_LE(flagged[1] + flagged[2] + flagged[3], 2);
+  // Without the gate (threshold out of reach) the slide drags the body estimate along.
+  s.slip_gate_chi2 = 1e12;
+  lo::LegOdometry ungated(s, kin_);
+  const double err_ungated = Run(&ungated, 1.15, 0, 0.2, &flagged);
+  std::printf("error with gate %.2f mm, without %.2f mm\n", err_gated * 1e3, err_ungated * 1e3);
+  EXPECT_LT(err_gated, 0.5 * err_ungated);
+}
+
+TEST_F(SyntheticStance, EstimatedContactFindsTheLowFeet) {
+  slam::LegOdometrySettings s;
+  s.contact = "estimated";
+  lo::LegOdometry lo(s, kin_);
+  lo.Start(0, Eigen::Isometry3d(Eigen::Translation3d(0, 0, 0.075)));
+  ImuSample imu;
+  imu.accel_i = Eigen::Vector3d(0, 0, 9.81);
+  lo.AddImu(imu);
+  // Trot: FL and BR lifted 15 mm, FR and BL on the floor.
+  JointState js;
+  for (int i = 0; i < kNumLegs; ++i) {
+    Eigen::Vector3d f = feet_body_[i];
+    if (i == 0 || i == 3) f.z() += 0.015;
+    ASSERT_TRUE(kin_.Inverse(static_cast<Leg>(i), f, &js.position_rad[2 * i], &js.position_rad[2 * i + 1]));
+  }
+  js.contact = {true, true, true, true};  // simulator truth: must not be read
+  lo.AddJoints(js);
+  EXPECT_FALSE(lo.feet()[0].contact);
+  EXPECT_TRUE(lo.feet()[1].contact);
+  EXPECT_TRUE(lo.feet()[2].contact);
+  EXPECT_FALSE(lo.feet()[3].contact);
+}
+
+TEST(SlipScore, EventsFromSamplesAndTheirMatching) {
+  app::SlipEventBuilder truth_b(0.02), det_b(0.0);
+  const int64_t dt = 5'000'000;
+  // Truth: FL slides over samples 10-15 (30 ms), FR over 40-41 (10 ms: too short to count).
+  // Detected: FL at 12-13 (matches), BL at 60 (false alarm).
+  for (int k = 0; k < 100; ++k) {
+    std::array<bool, kNumLegs> t{}, d{};
+    t[0] = k >= 10 && k <= 15;
+    t[1] = k >= 40 && k <= 41;
+    d[0] = k >= 12 && k <= 13;
+    d[2] = k == 60;
+    truth_b.Add(k * dt, dt, t, {0.1, 0.1, 0.1, 0.1});
+    det_b.Add(k * dt, dt, d, {20, 20, 20, 20});
+  }
+  std::vector<app::SlipEvent> truth = truth_b.Finish(), det = det_b.Finish();
+  ASSERT_EQ(truth.size(), 1u);
+  EXPECT_EQ(truth[0].start_ns, 10 * dt);
+  EXPECT_EQ(truth[0].end_ns, 16 * dt);
+  ASSERT_EQ(det.size(), 2u);
+  const app::SlipScore s = app::ScoreSlip(&truth, &det, 0.02);
+  EXPECT_EQ(s.true_found, 1);
+  EXPECT_EQ(s.detections_correct, 1);
+  EXPECT_DOUBLE_EQ(s.precision, 0.5);
+  EXPECT_DOUBLE_EQ(s.recall, 1.0);
+  EXPECT_NE(app::SlipCsv(truth, det).find("detected,BL,0.300,0.305"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace viqu
