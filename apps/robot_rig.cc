@@ -34,10 +34,11 @@ void RobotRig::Step(const ctrl::Pose2& steer_pose) {
   world_->Step();
 }
 
-ctrl::Pose2 RobotRig::TruePose2() const {
-  const GroundTruthState gt = world_->GroundTruth();
-  const Eigen::Vector3d x_w = gt.T_w_body.q_w_x * Eigen::Vector3d::UnitX();
-  return ctrl::Pose2{gt.T_w_body.p_w_x.x(), gt.T_w_body.p_w_x.y(), std::atan2(x_w.y(), x_w.x())};
+ctrl::Pose2 RobotRig::TruePose2() const { return Pose2Of(ToIsometry(world_->GroundTruth().T_w_body)); }
+
+ctrl::Pose2 Pose2Of(const Eigen::Isometry3d& T_w_body) {
+  const Eigen::Vector3d x_w = T_w_body.linear() * Eigen::Vector3d::UnitX();
+  return ctrl::Pose2{T_w_body.translation().x(), T_w_body.translation().y(), std::atan2(x_w.y(), x_w.x())};
 }
 
 }  // namespace viqu::app

@@ -40,6 +40,9 @@ class RobotRig {
   std::optional<ctrl::VelocitySchedule> schedule_;
 };
 
+// The planar pose (x, y, heading of the trunk's x axis) of a trunk pose in the world.
+ctrl::Pose2 Pose2Of(const Eigen::Isometry3d& T_w_body);
+
 // The URDF that describes the same robot as an MJCF file: same folder and stem, ".urdf".
 std::string UrdfBesideMjcf(const std::string& mjcf_path);
 

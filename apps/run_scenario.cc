@@ -105,6 +105,7 @@ sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const Pinhole
   rig.T_body_cam1 = w.T_body_cam(true);
   rig.imu = s.sensors.imu;
   rig.joints = s.sensors.joints;
+  rig.urdf_path = UrdfBesideMjcf(s.robot.model);
   return rig;
 }
 
@@ -112,6 +113,9 @@ sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const Pinhole
 
 int RunScenario(const Scenario& s, const RunOptions& opt) {
   const auto wall_start = std::chrono::steady_clock::now();
+  if (s.robot.command.follow == "estimate" && !opt.slam) {
+    throw InputError(s.source_file + ": robot.command.follow: estimate needs the estimator; it cannot run with --no-slam");
+  }
   const std::string out = ResolveOutDir(s, opt);
   // SLAM settings: the settings file with the scenario's slam.mode / slam.dynamic keys on top; the
   // resolved scenario records the values in effect.
@@ -138,10 +142,8 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
 
   RunMetrics metrics;
   metrics.renderer = renderer.device_description();
-  if (s.robot.command.follow == "estimate") {
-    std::fprintf(stderr, "viqu: warning: robot.command.follow is 'estimate' but the SLAM estimator is not "
-                         "part of this build yet; steering by ground truth\n");
-  }
+  const bool steer_by_estimate = s.robot.command.follow == "estimate";
+  if (steer_by_estimate) metrics.steer_source = "estimate";
   // The map is anchored at the true first camera pose, so that the estimate and the ground
   // truth share a frame (ATE aligns them anyway).
   std::unique_ptr<SlamRun> slam;
@@ -184,6 +186,10 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   const int64_t end_ns = std::llround(s.duration_s * 1e9);
   Eigen::Vector3d last_p = world.GroundTruth().T_w_body.p_w_x;
   StereoFrame frame;
+  // The estimate the robot steers by with robot.command.follow: estimate: in mode full the fused
+  // filter (every IMU sample), otherwise the last frame's visual pose.
+  const Eigen::Isometry3d T_cam_body = world.T_body_cam(false).inverse();
+  Eigen::Isometry3d visual_T_w_body = ToIsometry(world.GroundTruth().T_w_body);
   while (true) {
     const int64_t t_ns = world.time_ns();
     if (sensors.imu_clock.Due(t_ns)) {
@@ -196,12 +202,16 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       const JointState js = sensors.joints.Measure(t_ns, world.JointPositions(), world.JointVelocities(),
                                                    world.FootContacts());
       if (recorder) recorder->AddJoints(js);
+      // The controller publishes its planned stance with every encoder reading; the touch
+      // sensors are read with the encoders (their own seeded stream: reading them changes no other).
+      const ContactReading planned{t_ns, rig.gait().planned_stance()};
+      std::optional<ContactReading> touch;
+      if (recorder || (lo && settings->lo.contact == "touch")) touch = sensors.touch.Measure(t_ns, world.FootNormalForces());
+      if (recorder) recorder->AddContact(t_ns, touch->stance, planned.stance);
       if (lo) {
-        // The controller publishes its planned stance with every encoder reading; the touch
-        // sensors are read with the encoders.
         std::optional<ContactReading> contact;
-        if (settings->lo.contact == "schedule") contact = ContactReading{t_ns, rig.gait().planned_stance()};
-        if (settings->lo.contact == "touch") contact = sensors.touch.Measure(t_ns, world.FootNormalForces());
+        if (settings->lo.contact == "schedule") contact = planned;
+        if (settings->lo.contact == "touch") contact = touch;
         if (contact) {
           lo->AddContact(*contact);
           fused_lo->AddContact(*contact);
@@ -245,6 +255,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       if (lo) lo->AddFrame(t_ns);
       if (slam) {
         const slam::TrackResult r = slam->Track(frame, &truth);
+        visual_T_w_body = r.T_w_c * T_cam_body;
         metrics.track_ms.push_back(r.track_ms);
         progress.SetNote(slam::TrackStatusName(r.status));
       }
@@ -263,7 +274,11 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     }
     if (world.TrunkTiltRad() > kFallTiltRad || world.TrunkTouchesGround()) metrics.fell = true;
     if (t_ns >= end_ns || (metrics.fell && !s.robot.allow_fall)) break;
-    rig.Step(rig.TruePose2());
+    if (steer_by_estimate) {
+      rig.Step(Pose2Of(fused_lo ? fused_lo->T_w_body() : visual_T_w_body));
+    } else {
+      rig.Step(rig.TruePose2());
+    }
     progress.Update(world.data()->time);
   }
   progress.Finish();
@@ -280,6 +295,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   if (slam) summary = slam->Finish(gt_cam, metrics.path_length_m, &json);
   LoSummary lo_summary;
   if (lo) lo_summary = lo->Finish(gt_cam, metrics.path_length_m, &json);
+  if (fusion) json.Set("lo.fusion_corrections", fusion->corrections());
   WriteFileAtomic(out + "/metrics.json", json.ToString());
 
   std::printf("viqu run %s: %.1f s simulated in %.1f s (real-time factor %.2fx), path %.2f m, %d frames, "

@@ -122,6 +122,12 @@ struct Slope {                       // terrain.slopes[i]: a ramp rising along i
   double yaw_deg = 0;                // direction of ascent in world (deg)
 };
 
+struct Disturbance {                 // disturbances[i]: an external push on the trunk
+  double t_s = 0;                    // start (s)
+  std::array<double, 3> force_n{};   // force at the trunk's centre of mass, world frame (N)
+  double duration_s = 0.1;           // (s)
+};
+
 struct TerrainConfig {
   double friction = 1.0;             // terrain.friction: floor friction elsewhere
   std::vector<FrictionPatch> patches;
@@ -161,6 +167,7 @@ struct Scenario {
   SensorsConfig sensors;
   std::vector<ObstacleConfig> obstacles;
   TerrainConfig terrain;
+  std::vector<Disturbance> disturbances;
   SlamConfig slam;
 };
 

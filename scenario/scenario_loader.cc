@@ -188,6 +188,26 @@ void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
   m.RejectUnknownKeys();
 }
 
+void ReadDisturbances(const YamlSource& src, const YAML::Node& list, const std::string& key_path,
+                      std::vector<Disturbance>* out) {
+  out->clear();
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node item = Element(list, i);
+    YamlMapReader m(src, item, JoinKeyPath(key_path, std::to_string(i)), item);
+    Disturbance d;
+    m.Require("t_s");
+    m.Number("t_s", &d.t_s, NumberRange::Closed(0, 24 * 3600));
+    m.Require("force_n");
+    std::vector<double> f;
+    // At most 100 N: 20 times the robot's weight, beyond any push that the model survives.
+    m.NumberList("force_n", &f, 3, NumberRange::Closed(-100, 100));
+    d.force_n = {f[0], f[1], f[2]};
+    m.Number("duration_s", &d.duration_s, NumberRange::OpenClosed(0, 60));
+    m.RejectUnknownKeys();
+    out->push_back(d);
+  }
+}
+
 // Expected number of size_m entries per category.
 size_t SizeEntries(const std::string& category) {
   return (category == "box" || category == "furniture") ? 3 : 1;
@@ -323,6 +343,7 @@ Scenario LoadScenario(const std::string& path, const std::vector<std::string>& o
   ReadSensors(top.Map("sensors"), 1.0 / s.physics_dt_s, &s.sensors);
   ReadObstacles(src, top.List("obstacles"), "obstacles", &s.obstacles);
   ReadTerrain(top.Map("terrain"), &s.terrain);
+  ReadDisturbances(src, top.List("disturbances"), "disturbances", &s.disturbances);
   ReadSlam(top.Map("slam"), base_dir, &s.slam);
   top.RejectUnknownKeys();
   return s;

@@ -190,6 +190,19 @@ std::string ScenarioToYaml(const Scenario& s) {
   Sensors(out, s.sensors);
   Obstacles(out, s.obstacles);
   Terrain(out, s.terrain);
+  if (!s.disturbances.empty()) {
+    out << YAML::Key << "disturbances" << YAML::Value << YAML::BeginSeq;
+    for (const Disturbance& d : s.disturbances) {
+      out << YAML::Flow << YAML::BeginMap;
+      EmitNumber(out, "t_s", d.t_s);
+      out << YAML::Key << "force_n" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (double f : d.force_n) out << YamlNumberText(f);
+      out << YAML::EndSeq;
+      EmitNumber(out, "duration_s", d.duration_s);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
   Slam(out, s.slam);
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";

@@ -88,6 +88,7 @@ EurocRecorder::EurocRecorder(const std::string& dataset_dir, const EurocRig& rig
   if (rig_.camera.segmentation) MakeDirs(mav0_ + "/seg0/data");
   MakeDirs(mav0_ + "/imu0");
   MakeDirs(mav0_ + "/joints0");
+  MakeDirs(mav0_ + "/contact0");
   MakeDirs(mav0_ + "/state_groundtruth_estimate0");
 
   const std::string image_header = "#timestamp [ns],filename\n";
@@ -107,6 +108,15 @@ EurocRecorder::EurocRecorder(const std::string& dataset_dir, const EurocRig& rig
   for (const char* j : kJointNames) joints_header += std::string(",") + j + "_vel [rad s^-1]";
   for (const char* f : kFootNames) joints_header += std::string(",") + f + "_contact [0/1]";
   joints0_ = OpenCsv("joints0", joints_header + "\n");
+  std::string contact_header = "#timestamp [ns]";
+  for (const char* f : kFootNames) contact_header += std::string(",") + f + "_touch [0/1]";
+  for (const char* f : kFootNames) contact_header += std::string(",") + f + "_planned [0/1]";
+  contact0_ = OpenCsv("contact0", contact_header + "\n");
+  if (!rig_.urdf_path.empty()) {
+    std::error_code ec;
+    fs::copy_file(rig_.urdf_path, mav0_ + "/robot.urdf", fs::copy_options::overwrite_existing, ec);
+    if (ec) throw RunError("cannot copy " + rig_.urdf_path + " into the recording: " + ec.message());
+  }
   gt0_ = OpenCsv("state_groundtruth_estimate0",
                  "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
                  "q_RS_z [], v_RS_R_x [m s^-1], v_RS_R_y [m s^-1], v_RS_R_z [m s^-1], "
@@ -118,7 +128,7 @@ EurocRecorder::~EurocRecorder() {
   if (finished_) return;
   writer_.reset();  // stop writing images into the folder that is about to go
   // Close (and delete) the temporary CSV files first, then the whole partial folder.
-  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &imu0_, &joints0_, &gt0_}) s->file.reset();
+  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &imu0_, &joints0_, &contact0_, &gt0_}) s->file.reset();
   std::error_code ec;
   fs::remove_all(partial_dir_, ec);
 }
@@ -185,18 +195,27 @@ void EurocRecorder::AddFrame(const StereoFrame& frame) {
 void EurocRecorder::AddImu(const ImuSample& s) {
   CheckStamp(&imu0_, s.t_ns, "imu0");
   std::string row = RowStamp(s.t_ns);
-  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.9g", s.gyro_i[i]);
-  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.9g", s.accel_i[i]);
+  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.17g", s.gyro_i[i]);
+  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.17g", s.accel_i[i]);
   imu0_.file->Write(row + "\n");
 }
 
 void EurocRecorder::AddJoints(const JointState& j) {
   CheckStamp(&joints0_, j.t_ns, "joints0");
   std::string row = RowStamp(j.t_ns);
-  for (double q : j.position_rad) row += "," + Fmt("%.9g", q);
-  for (double v : j.velocity_rad_s) row += "," + Fmt("%.9g", v);
+  for (double q : j.position_rad) row += "," + Fmt("%.17g", q);
+  for (double v : j.velocity_rad_s) row += "," + Fmt("%.17g", v);
   for (bool c : j.contact) row += c ? ",1" : ",0";
   joints0_.file->Write(row + "\n");
+}
+
+void EurocRecorder::AddContact(int64_t t_ns, const std::array<bool, kNumLegs>& touch,
+                               const std::array<bool, kNumLegs>& planned) {
+  CheckStamp(&contact0_, t_ns, "contact0");
+  std::string row = RowStamp(t_ns);
+  for (bool c : touch) row += c ? ",1" : ",0";
+  for (bool c : planned) row += c ? ",1" : ",0";
+  contact0_.file->Write(row + "\n");
 }
 
 void EurocRecorder::AddGroundTruth(const GroundTruthState& g) {
@@ -279,7 +298,7 @@ void EurocRecorder::Finish() {
   if (finished_) return;
   writer_->Drain();
   WriteSensorFiles();
-  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &imu0_, &joints0_, &gt0_}) {
+  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &imu0_, &joints0_, &contact0_, &gt0_}) {
     if (s->file) s->file->Commit();
   }
   // Swap the finished folder into place; an old dataset under the final name is replaced.

@@ -25,6 +25,7 @@ struct EurocRig {
   Eigen::Isometry3d T_body_cam1 = Eigen::Isometry3d::Identity();  // right camera (optical) in body
   ImuConfig imu;                  // rate and noise figures; the IMU frame is the body frame
   JointsConfig joints;            // encoder rate and noise
+  std::string urdf_path;          // the robot's URDF, copied to mav0/robot.urdf ("" = none)
 };
 
 // Records a run in the EuRoC MAV layout, which stereo(-inertial) SLAM systems read as is:
@@ -37,7 +38,10 @@ struct EurocRig {
 //   DATASET/mav0/seg0/{data/<t_ns>.png, data.csv, sensor.yaml, instances.csv,
 //                      frame_instances.csv}                        left instance ids
 //   DATASET/mav0/imu0/{data.csv, sensor.yaml}
-//   DATASET/mav0/joints0/{data.csv, sensor.yaml}                   encoders and foot contacts
+//   DATASET/mav0/joints0/{data.csv, sensor.yaml}                   encoders and foot contacts (truth)
+//   DATASET/mav0/contact0/data.csv                                 foot touch sensors and the
+//                                                                  gait's planned stance
+//   DATASET/mav0/robot.urdf                                        the robot's kinematics
 //   DATASET/mav0/state_groundtruth_estimate0/{data.csv, sensor.yaml}  trunk (IMU) pose in world
 //
 // seg0 describes the ids twice. instances.csv ("id,category,name", the format of a masks folder,
@@ -51,7 +55,8 @@ struct EurocRig {
 //
 // Everything is written under DATASET.partial/ (CSV files through temporary names) and renamed
 // onto DATASET by Finish(); destroyed without Finish(), the recorder removes DATASET.partial.
-// Timestamps of each stream must increase. Errors throw RunError.
+// Timestamps of each stream must increase. Errors throw RunError. IMU and encoder values are
+// written with 17 significant digits, so that a replay reads back the very doubles of the run.
 class EurocRecorder {
  public:
   // `dataset_dir` is the final folder (e.g. RUN/dataset); a stale DATASET.partial is replaced.
@@ -64,6 +69,8 @@ class EurocRecorder {
   void AddFrame(const StereoFrame& frame);
   void AddImu(const ImuSample& sample);
   void AddJoints(const JointState& joints);
+  // The touch sensors' reading and the controller's planned stance at an encoder sample.
+  void AddContact(int64_t t_ns, const std::array<bool, kNumLegs>& touch, const std::array<bool, kNumLegs>& planned);
   void AddGroundTruth(const GroundTruthState& state);
   // Writes the sensor.yaml files, commits the CSV files and renames the folder into place.
   void Finish();
@@ -86,7 +93,7 @@ class EurocRecorder {
   std::string partial_dir_;  // DATASET.partial
   std::string mav0_;         // DATASET.partial/mav0
   EurocRig rig_;
-  CsvStream cam0_, cam1_, depth0_, seg0_, imu0_, joints0_, gt0_;
+  CsvStream cam0_, cam1_, depth0_, seg0_, imu0_, joints0_, contact0_, gt0_;
   CsvStream seg0_frames_;    // seg0/frame_instances.csv
   // An id seen in the segmentation, for seg0/instances.csv.
   struct SeenInstance {

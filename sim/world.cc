@@ -35,6 +35,7 @@ World::World(const Scenario& s, const std::array<double, kNumJoints>& q_stand, d
 
   const std::string what = s.robot.model;
   trunk_body_ = MjIdOrThrow(m, mjOBJ_BODY, "trunk", what);
+  disturbances_ = s.disturbances;
   cam_left_ = MjIdOrThrow(m, mjOBJ_CAMERA, "cam_left", what);
   cam_right_ = MjIdOrThrow(m, mjOBJ_CAMERA, "cam_right", what);
   accel_adr_ = m->sensor_adr[MjIdOrThrow(m, mjOBJ_SENSOR, "imu_accel", what)];
@@ -87,6 +88,12 @@ void World::SetJointTargets(const std::array<double, kNumJoints>& q) {
 
 void World::Step() {
   obstacles_->Apply(model_.get(), data_.get(), data_->time);
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  for (const Disturbance& d : disturbances_) {
+    if (data_->time >= d.t_s && data_->time < d.t_s + d.duration_s) force += Eigen::Vector3d(d.force_n.data());
+  }
+  mjtNum* xfrc = data_->xfrc_applied + 6 * trunk_body_;  // force (3) then torque (3), world frame
+  for (int k = 0; k < 3; ++k) xfrc[k] = force[k];
   mj_step(model_.get(), data_.get());
 }
 

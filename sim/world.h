@@ -31,7 +31,8 @@ class World {
   // Position-servo targets of the eight joints (rad).
   void SetJointTargets(const std::array<double, kNumJoints>& q);
 
-  // One physics step: obstacles move to the current time, then mj_step.
+  // One physics step: obstacles move to the current time, the scenario's pushes act on the
+  // trunk (xfrc_applied), then mj_step.
   void Step();
 
   int64_t time_ns() const;  // simulated time (ns)
@@ -73,6 +74,7 @@ class World {
   std::array<int, kNumJoints> qpos_adr_{}, dof_adr_{}, actuator_{};
   std::array<int, kNumLegs> foot_geom_{}, foot_site_{};
   std::vector<int> trunk_geoms_;
+  std::vector<Disturbance> disturbances_;
 };
 
 }  // namespace viqu::sim

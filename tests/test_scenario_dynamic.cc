@@ -4,6 +4,9 @@
 // figures measured on the landed code (in the comments) with about 2x margin on the error (README,
 // "Dynamic objects"); where issue 7's target is tighter than that and met, the target is the
 // bound. Targets not met (standing_people) are reported in the README, not hidden in a bound.
+// The runs use slam.mode visual_dynamic: the dynamic stage on vision alone. In mode full the leg
+// odometry's motion prior already keeps walking_people's no-removal baseline at 3.4 mm (from
+// 50 mm), which would hide what the dynamic stage does; WalkingPeople also runs full once.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -27,19 +30,19 @@ struct DynamicRun {
   double dyn(const char* key) const { return m["dynamic"][key].IsNull() ? -1.0 : m["dynamic"][key].as<double>(); }
 };
 
-DynamicRun RunMethod(const std::string& scenario, const std::string& method) {
+DynamicRun RunMethod(const std::string& scenario, const std::string& method, const std::string& mode = "visual_dynamic") {
   const Scenario s = LoadScenario(std::string(VIQU_SOURCE_DIR) + "/scenarios/" + scenario + ".yaml",
-                                  {"slam.dynamic.method=" + method});
-  const fs::path dir = fs::temp_directory_path() / ("viqu_dynamic_" + scenario + "_" + method);
+                                  {"slam.dynamic.method=" + method, "slam.mode=" + mode});
+  const fs::path dir = fs::temp_directory_path() / ("viqu_dynamic_" + scenario + "_" + method + "_" + mode);
   fs::remove_all(dir);
   app::RunOptions opt;
   opt.out_dir = dir.string();
   EXPECT_EQ(app::RunScenario(s, opt), 0);
   EXPECT_TRUE(fs::exists(dir / "dynamic.csv"));
   DynamicRun r{YAML::LoadFile((dir / "metrics.json").string())};
-  std::printf("%s %-9s ATE %.4f m (%.3f%% of path), %d lost; precision %.3f recall %.3f latency median %.2f s "
+  std::printf("%s %s %-9s ATE %.4f m (%.3f%% of path), %d lost; precision %.3f recall %.3f latency median %.2f s "
               "max %.2f s; kept on static movables %.3f, dropped on moving %.3f; dynamic stage %.2f ms median\n",
-              scenario.c_str(), method.c_str(), r.ate_m(), r.pct(), r.lost(), r.dyn("precision"), r.dyn("recall"),
+              scenario.c_str(), mode.c_str(), method.c_str(), r.ate_m(), r.pct(), r.lost(), r.dyn("precision"), r.dyn("recall"),
               r.dyn("latency_s_median"), r.dyn("latency_s_max"), r.dyn("kept_on_static_movables"),
               r.dyn("dropped_on_moving"), r.m["timing"]["dynamic_ms_median"].as<double>());
   return r;
@@ -63,6 +66,15 @@ TEST(DynamicScenarios, WalkingPeople) {
   // Measured precision 0.999, recall 0.913, median latency 0.55 s (targets 0.95, 0.90, 0.5 s).
   ExpectDetection(adaptive, 0.95, 0.83, 1.0);
   EXPECT_EQ(none.dyn("dropped_on_moving"), 0.0);  // the baseline keeps everything
+  // Mode full (leg odometry + IMU fused, issue 8): measured 3.2 mm, 0.064x the no-removal
+  // baseline (issue 8's target on walking_people: 0.7x vision alone) and below adaptive on
+  // vision alone (3.8 mm).
+  const DynamicRun full = RunMethod("walking_people", "adaptive", "full");
+  std::printf("walking_people: full / none ATE = %.3f, full / visual_dynamic adaptive = %.3f\n",
+              full.ate_m() / none.ate_m(), full.ate_m() / adaptive.ate_m());
+  EXPECT_LE(full.ate_m(), 0.13 * none.ate_m());
+  EXPECT_LE(full.ate_m(), 1.05 * adaptive.ate_m());
+  EXPECT_EQ(full.lost(), 0);
 }
 
 TEST(DynamicScenarios, PushedBox) {

@@ -43,7 +43,16 @@ void ExpectAccuracy(const YAML::Node& m, double max_pct_path) {
 }
 
 TEST(SlamAccuracy, StaticRoomWithinPointThreePercentOfPath) {
-  ExpectAccuracy(RunAndReadMetrics("static_room.yaml", "static_room"), 0.3);
+  const YAML::Node m = RunAndReadMetrics("static_room.yaml", "static_room");
+  ExpectAccuracy(m, 0.3);
+  // Leg odometry + IMU alone over the same run (issue 8): drift target 5% of the path; measured
+  // 1.70% and ATE 35 mm, bounds at about 2x.
+  const double drift = m["lo"]["drift_pct_path"].as<double>();
+  std::printf("LO alone: ATE %.4f m, drift %.2f%% of path, yaw drift %.1f deg, %.4f ms per sample\n",
+              m["lo"]["ate"]["rmse_m"].as<double>(), drift, m["lo"]["yaw_drift_deg"].as<double>(),
+              m["lo"]["update_ms_mean"].as<double>());
+  EXPECT_LE(drift, 3.4);
+  EXPECT_LE(m["lo"]["ate"]["rmse_m"].as<double>(), 0.07);
 }
 
 TEST(SlamAccuracy, LongLoopWithinPointSixPercentOfPath) {

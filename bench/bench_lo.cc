@@ -1,0 +1,47 @@
+// Leg odometry + IMU: the cost of one IMU sample and one encoder reading through the attitude
+// filter and the 18-state Kalman filter (issue 8 target: <= 0.05 ms per IMU sample). The robot
+// stands on the URDF's legs with noisy sensors; all four feet in stance (the most updates).
+#include <random>
+
+#include <benchmark/benchmark.h>
+
+#include "kinematics/leg_kinematics.h"
+#include "slam/lo/leg_odometry.h"
+
+namespace viqu {
+namespace {
+
+void BM_LegOdometrySample(benchmark::State& state) {
+  const kin::LegKinematics kin = kin::LegKinematics::FromUrdfFile(std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.urdf");
+  slam::LegOdometrySettings settings;
+  settings.contact = "schedule";
+  lo::LegOdometry lo(settings, kin);
+  lo.Start(0, Eigen::Isometry3d(Eigen::Translation3d(0, 0, 0.075)));
+  std::array<double, kNumJoints> q{};
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg leg = static_cast<Leg>(i);
+    const Eigen::Vector3d hip = kin.chain(leg).T_trunk_hip.translation();
+    kin.Inverse(leg, Eigen::Vector3d(hip.x(), hip.y(), -0.069), &q[2 * i], &q[2 * i + 1]);
+  }
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> n(0, 1);
+  int64_t t = 0;
+  for (auto _ : state) {
+    t += 5'000'000;
+    ImuSample imu;
+    imu.t_ns = t;
+    imu.accel_i = Eigen::Vector3d(0.02 * n(rng), 0.02 * n(rng), 9.81 + 0.02 * n(rng));
+    imu.gyro_i = Eigen::Vector3d(0.002 * n(rng), 0.002 * n(rng), 0.002 * n(rng));
+    lo.AddImu(imu);
+    lo.AddContact(ContactReading{t, {true, true, true, true}});
+    JointState js;
+    js.t_ns = t;
+    for (int j = 0; j < kNumJoints; ++j) js.position_rad[j] = q[j] + 0.001 * n(rng);
+    lo.AddJoints(js);
+    benchmark::DoNotOptimize(lo.T_w_body());
+  }
+}
+BENCHMARK(BM_LegOdometrySample);
+
+}  // namespace
+}  // namespace viqu
