@@ -131,34 +131,34 @@ bool World::IsRobotGeom(int geom) const {
   return model_->body_rootid[model_->geom_bodyid[geom]] == model_->body_rootid[trunk_body_];
 }
 
+int World::FootOfContact(int contact) const {
+  const mjContact& con = data_->contact[contact];
+  for (int leg = 0; leg < kNumLegs; ++leg) {
+    if ((con.geom1 == foot_geom_[leg] && !IsRobotGeom(con.geom2)) ||
+        (con.geom2 == foot_geom_[leg] && !IsRobotGeom(con.geom1))) {
+      return leg;
+    }
+  }
+  return -1;
+}
+
 std::array<bool, kNumLegs> World::FootContacts() const {
   std::array<bool, kNumLegs> c{};
-  const mjData* d = data_.get();
-  for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& con = d->contact[i];
-    for (int leg = 0; leg < kNumLegs; ++leg) {
-      if ((con.geom1 == foot_geom_[leg] && !IsRobotGeom(con.geom2)) ||
-          (con.geom2 == foot_geom_[leg] && !IsRobotGeom(con.geom1))) {
-        c[leg] = true;
-      }
-    }
+  for (int i = 0; i < data_->ncon; ++i) {
+    const int leg = FootOfContact(i);
+    if (leg >= 0) c[leg] = true;
   }
   return c;
 }
 
 std::array<double, kNumLegs> World::FootNormalForces() const {
   std::array<double, kNumLegs> f{};
-  const mjData* d = data_.get();
-  for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& con = d->contact[i];
-    for (int leg = 0; leg < kNumLegs; ++leg) {
-      if ((con.geom1 == foot_geom_[leg] && !IsRobotGeom(con.geom2)) ||
-          (con.geom2 == foot_geom_[leg] && !IsRobotGeom(con.geom1))) {
-        mjtNum force[6];
-        mj_contactForce(model_.get(), d, i, force);  // contact frame: force[0] is the normal force
-        f[leg] += force[0];
-      }
-    }
+  for (int i = 0; i < data_->ncon; ++i) {
+    const int leg = FootOfContact(i);
+    if (leg < 0) continue;
+    mjtNum force[6];
+    mj_contactForce(model_.get(), data_.get(), i, force);  // contact frame: force[0] is the normal force
+    f[leg] += force[0];
   }
   return f;
 }

@@ -62,6 +62,8 @@ class World {
 
  private:
   bool IsRobotGeom(int geom) const;
+  // The leg whose foot touches a non-robot geom in contact `contact` of mjData, or -1.
+  int FootOfContact(int contact) const;
 
   std::string xml_;
   ModelPtr model_;

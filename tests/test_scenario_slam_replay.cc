@@ -326,7 +326,8 @@ TEST(SlamReplay, RgbdRunReplaysFromSeg0AndFromTumWithMasks) {
   const fs::path cfg_dir = Fresh("rgbd_config");
   fs::create_directories(cfg_dir);
   const fs::path cfg = cfg_dir / "rgbd.yaml";
-  std::ofstream(cfg) << "input: rgbd\n";
+  // visual_dynamic: the TUM replay below has no encoders to fuse.
+  std::ofstream(cfg) << "input: rgbd\nmode: visual_dynamic\n";
   Scenario s = ShortRoomWithPerson(cfg.string());
   s.sensors.segmentation.false_positive_rate = 0.2;
   const fs::path live = Fresh("rgbd_live");
