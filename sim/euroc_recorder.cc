@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <vector>
 
@@ -32,6 +33,17 @@ constexpr double kDepthUnitM = 1.0 / kDepthStepsPerM;
 std::string Fmt(const char* format, double v) {
   char buf[64];
   std::snprintf(buf, sizeof(buf), format, v);
+  return buf;
+}
+
+// The shortest of %.15g, %.16g, %.17g that reads back as exactly `v` (17 digits always do):
+// "0.1" stays "0.1", and a replay gets the very double of the run.
+std::string Exact(double v) {
+  char buf[64];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof(buf), "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
   return buf;
 }
 
@@ -195,16 +207,16 @@ void EurocRecorder::AddFrame(const StereoFrame& frame) {
 void EurocRecorder::AddImu(const ImuSample& s) {
   CheckStamp(&imu0_, s.t_ns, "imu0");
   std::string row = RowStamp(s.t_ns);
-  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.17g", s.gyro_i[i]);
-  for (int i = 0; i < 3; ++i) row += "," + Fmt("%.17g", s.accel_i[i]);
+  for (int i = 0; i < 3; ++i) row += "," + Exact(s.gyro_i[i]);
+  for (int i = 0; i < 3; ++i) row += "," + Exact(s.accel_i[i]);
   imu0_.file->Write(row + "\n");
 }
 
 void EurocRecorder::AddJoints(const JointState& j) {
   CheckStamp(&joints0_, j.t_ns, "joints0");
   std::string row = RowStamp(j.t_ns);
-  for (double q : j.position_rad) row += "," + Fmt("%.17g", q);
-  for (double v : j.velocity_rad_s) row += "," + Fmt("%.17g", v);
+  for (double q : j.position_rad) row += "," + Exact(q);
+  for (double v : j.velocity_rad_s) row += "," + Exact(v);
   for (bool c : j.contact) row += c ? ",1" : ",0";
   joints0_.file->Write(row + "\n");
 }

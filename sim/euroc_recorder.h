@@ -56,7 +56,8 @@ struct EurocRig {
 // Everything is written under DATASET.partial/ (CSV files through temporary names) and renamed
 // onto DATASET by Finish(); destroyed without Finish(), the recorder removes DATASET.partial.
 // Timestamps of each stream must increase. Errors throw RunError. IMU and encoder values are
-// written with 17 significant digits, so that a replay reads back the very doubles of the run.
+// written with as many digits as they need to read back exactly (at most 17), so that a replay
+// gets the very doubles of the run.
 class EurocRecorder {
  public:
   // `dataset_dir` is the final folder (e.g. RUN/dataset); a stale DATASET.partial is replaced.

@@ -137,6 +137,11 @@ TEST_F(EurocRecorderTest, WritesTheEurocLayoutOnlyOnFinish) {
   EXPECT_EQ(Columns(joints[1]), 21u);
   EXPECT_EQ(joints[0].rfind("#timestamp [ns],FL_hip [rad],FL_knee [rad],FR_hip [rad]", 0), 0u) << joints[0];
   EXPECT_EQ(joints[1].substr(joints[1].size() - 8), ",1,0,0,1");
+  // Touch sensors and planned stance, one row per encoder reading (none recorded here: header only).
+  const std::vector<std::string> contact = ReadLines(mav0 / "contact0/data.csv");
+  ASSERT_GE(contact.size(), 1u);
+  EXPECT_EQ(contact[0].rfind("#timestamp [ns],FL_touch [0/1]", 0), 0u) << contact[0];
+  EXPECT_EQ(Columns(contact[0]), 9u);
   const std::vector<std::string> gt = ReadLines(mav0 / "state_groundtruth_estimate0/data.csv");
   ASSERT_EQ(gt.size(), 3u);
   EXPECT_EQ(Columns(gt[0]), 17u);

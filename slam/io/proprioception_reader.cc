@@ -53,7 +53,6 @@ std::optional<Proprioception> ReadViquProprioception(const std::string& dir) {
   }
   Proprioception p;
   p.urdf_path = (mav0 / "robot.urdf").string();
-  p.T_body_cam0 = ReadEurocStereoLayout(mav0.string()).cam0.T_B_S;
   ReadRows(mav0 / "imu0" / "data.csv", 6, [&](int64_t t, const std::vector<double>& v, const TextTableReader&) {
     ImuSample s;
     s.t_ns = t;
@@ -82,6 +81,7 @@ std::optional<Proprioception> ReadViquProprioception(const std::string& dir) {
              p.touch.push_back(touch);
              p.planned.push_back(planned);
            });
+  p.T_body_cam0 = ReadEurocStereoLayout(mav0.string()).cam0.T_B_S;
   const fs::path gt = mav0 / "state_groundtruth_estimate0" / "data.csv";
   if (fs::exists(gt, ec)) {
     const std::vector<StampedPose> body = ReadEurocGroundTruth(gt.string());

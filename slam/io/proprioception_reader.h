@@ -1,8 +1,8 @@
 #pragma once
 // The proprioceptive streams of a viqu recording (`viqu run --record`): imu0, joints0, contact0
 // and robot.urdf beside the images, for leg odometry in a replay (`viqu slam --format viqu` in
-// slam.mode full). Values were written with 17 significant digits: the replay reads the very
-// doubles of the live run.
+// slam.mode full). Values were written with the digits they need to read back exactly: the
+// replay reads the very doubles of the live run.
 #include <optional>
 #include <string>
 #include <vector>
