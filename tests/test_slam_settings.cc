@@ -146,7 +146,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 14 + 9 + 8 + 3 + 12 + 15;
+constexpr int kLeafKeys = 4 + 6 + 10 + 14 + 9 + 8 + 3 + 12 + 16;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();

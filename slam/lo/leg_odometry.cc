@@ -133,31 +133,35 @@ void LegOdometry::AddJoints(const JointState& js) {
   const std::array<bool, kNumLegs> contact = ContactOf(rel_w);
   const int64_t touchdown_ns = std::llround(settings_.touchdown_s * 1e9);
   const int64_t window_ns = std::llround(settings_.velocity_window_s * 1e9);
-  // The reading at least one window before this one (the oldest kept if none is that old).
-  const WindowSample* old = nullptr;
-  for (const WindowSample& w : window_) {
-    if (w.t_ns <= js.t_ns - window_ns) old = &w;
-  }
-  if (!old && !window_.empty()) old = &window_.front();
+  const int64_t min_window_ns = std::llround(settings_.slip_min_window_s * 1e9);
   const Eigen::Matrix3d P_vv = kf_.covariance().block<3, 3>(3, 3);
   // Gate every stance foot against the prediction before any of them updates it.
-  std::array<std::optional<Eigen::Vector3d>, kNumLegs> v_foot;  // body velocity through each foot, over the window
+  std::array<std::optional<Eigen::Vector3d>, kNumLegs> v_foot;  // body velocity through each foot, over its window
+  std::array<double, kNumLegs> v_std{};                        // and its standard deviation (m/s)
   for (int i = 0; i < kNumLegs; ++i) {
     FootStatus& f = feet_[i];
     if (contact[i] && !f.contact) f.touchdown_ns = js.t_ns;
     f.contact = contact[i];
     f.slipping = false;
     f.mahalanobis2 = 0;
-    if (!f.contact || !old || old->t_ns < f.touchdown_ns || old->t_ns >= js.t_ns) continue;
+    if (!f.contact) continue;
+    // The window starts at the newest kept reading one window old, or, for a foot that touched
+    // down more recently, at its touch-down: a shorter window, a noisier velocity.
+    const WindowSample* ref = nullptr;
+    for (const WindowSample& w : window_) {  // oldest first
+      if (w.t_ns < f.touchdown_ns) continue;
+      if (!ref || w.t_ns <= js.t_ns - window_ns) ref = &w;
+    }
+    if (!ref || js.t_ns - ref->t_ns < min_window_ns) continue;
     // Over the window the foot, if it held, moved only by rolling, so the body moved by the
     // foot's rolling minus the change of the foot-minus-body vector.
-    const double dt = (js.t_ns - old->t_ns) * 1e-9;
-    v_foot[i] = 0.5 * (roll_w_[i] + old->roll_w[i]) - (rel_w[i] - old->rel_w[i]) / dt;
-    if (js.t_ns - f.touchdown_ns < touchdown_ns) continue;  // settling: no slip decision yet
+    const double dt = (js.t_ns - ref->t_ns) * 1e-9;
+    v_foot[i] = 0.5 * (roll_w_[i] + ref->roll_w[i]) - (rel_w[i] - ref->rel_w[i]) / dt;
+    v_std[i] = settings_.kin_velocity_noise_mps * std::max(1.0, settings_.velocity_window_s / dt);
     // The filter's own mean velocity over the same window (its prediction for now).
-    const Eigen::Vector3d v_mean = (kf_.position() - old->p_w) / dt;
+    const Eigen::Vector3d v_mean = (kf_.position() - ref->p_w) / dt;
     Eigen::Matrix3d S = P_vv;
-    S.diagonal().array() += settings_.kin_velocity_noise_mps * settings_.kin_velocity_noise_mps;
+    S.diagonal().array() += v_std[i] * v_std[i];
     const Eigen::Vector3d y = *v_foot[i] - v_mean;
     f.mahalanobis2 = y.dot(S.ldlt().solve(y));
     f.slipping = f.mahalanobis2 > settings_.slip_gate_chi2;
@@ -167,7 +171,7 @@ void LegOdometry::AddJoints(const JointState& js) {
     const bool settling = f.contact && js.t_ns - f.touchdown_ns < touchdown_ns;
     const double inflate = settling ? settings_.touchdown_inflation : 1.0;
     kf_.UpdateFootPosition(i, rel_w[i], settings_.kin_position_noise_m * inflate);
-    if (f.contact && !f.slipping && v_foot[i]) kf_.UpdateVelocity(*v_foot[i], settings_.kin_velocity_noise_mps * inflate);
+    if (f.contact && !f.slipping && v_foot[i]) kf_.UpdateVelocity(*v_foot[i], v_std[i] * inflate);
   }
   // Keep the readings of the last window (and the one just before it).
   window_.push_back(WindowSample{js.t_ns, kf_.position(), rel_w, roll_w_});

@@ -154,6 +154,7 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("touchdown_s", &lo->touchdown_s, NumberRange::Closed(0, 10));
   m->Number("touchdown_inflation", &lo->touchdown_inflation, NumberRange::Closed(1, 1e6));
   m->Number("slip_gate_chi2", &lo->slip_gate_chi2, NumberRange::Positive());
+  m->Number("slip_min_window_s", &lo->slip_min_window_s, NumberRange::Closed(0, 1));
   m->Number("contact_height_m", &lo->contact_height_m, NumberRange::Positive());
   m->Integer("fusion_min_inliers", &lo->fusion_min_inliers, kCount0);
   m->RejectUnknownKeys();
@@ -310,6 +311,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "touchdown_s", lo.touchdown_s);
   EmitNumber(out, "touchdown_inflation", lo.touchdown_inflation);
   EmitNumber(out, "slip_gate_chi2", lo.slip_gate_chi2);
+  EmitNumber(out, "slip_min_window_s", lo.slip_min_window_s);
   EmitNumber(out, "contact_height_m", lo.contact_height_m);
   EmitInt(out, "fusion_min_inliers", lo.fusion_min_inliers);
   out << YAML::EndMap;

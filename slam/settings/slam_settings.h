@@ -101,6 +101,7 @@ struct LegOdometrySettings {
   double touchdown_inflation = 10;   // by this factor on their standard deviation (ratio)
   // Slip: a stance foot whose velocity innovation fails this gate is slipping for that sample.
   double slip_gate_chi2 = 16.27;     // Mahalanobis gate, chi-square 3 dof at 99.9% (1)
+  double slip_min_window_s = 0.01;   // a foot is judged once it has stood this long (s)
   double contact_height_m = 0.006;   // estimated: feet within this of the lowest foot are in contact (m)
   int fusion_min_inliers = 50;       // full: a frame tracked with this many inliers corrects the filter (count)
 };
