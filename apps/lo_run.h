@@ -46,9 +46,6 @@ class LoRun {
 
   LoSummary Finish(const eval::Trajectory& gt_cam, double path_length_m, JsonWriter* json);
 
-  const lo::LegOdometry& odometry() const { return lo_; }
-  const eval::Trajectory& estimate() const { return est_; }
-
  private:
   lo::LegOdometry lo_;
   Eigen::Isometry3d T_body_cam_;

@@ -189,6 +189,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   // The estimate the robot steers by with robot.command.follow: estimate: in mode full the fused
   // filter (every IMU sample), otherwise the last frame's visual pose.
   const Eigen::Isometry3d T_cam_body = world.T_body_cam(false).inverse();
+  // The contact readings the filters get (lo.contact; "estimated" needs none), decided once.
+  const bool lo_touch = lo && settings->lo.contact == "touch";
+  const bool lo_schedule = lo && settings->lo.contact == "schedule";
   Eigen::Isometry3d visual_T_w_body = ToIsometry(world.GroundTruth().T_w_body);
   while (true) {
     const int64_t t_ns = world.time_ns();
@@ -206,19 +209,17 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       // sensors are read with the encoders (their own seeded stream: reading them changes no other).
       const ContactReading planned{t_ns, rig.gait().planned_stance()};
       std::optional<ContactReading> touch;
-      if (recorder || (lo && settings->lo.contact == "touch")) touch = sensors.touch.Measure(t_ns, world.FootNormalForces());
+      if (recorder || lo_touch) touch = sensors.touch.Measure(t_ns, world.FootNormalForces());
       if (recorder) recorder->AddContact(t_ns, touch->stance, planned.stance);
+      if (lo_touch || lo_schedule) {
+        const ContactReading& contact = lo_touch ? *touch : planned;
+        lo->AddContact(contact);
+        fused_lo->AddContact(contact);
+      }
       if (lo) {
-        std::optional<ContactReading> contact;
-        if (settings->lo.contact == "schedule") contact = planned;
-        if (settings->lo.contact == "touch") contact = touch;
-        if (contact) {
-          lo->AddContact(*contact);
-          fused_lo->AddContact(*contact);
-        }
         fused_lo->AddJoints(js);
         LoTruth truth;
-        truth.contact = world.FootContacts();
+        truth.contact = js.contact;  // the encoder model passes the simulator's contacts through
         const GroundTruthState gt = world.GroundTruth();
         truth.p_w_body = gt.T_w_body.p_w_x;
         truth.vel_w_body = gt.vel_w_body;
@@ -295,7 +296,6 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   if (slam) summary = slam->Finish(gt_cam, metrics.path_length_m, &json);
   LoSummary lo_summary;
   if (lo) lo_summary = lo->Finish(gt_cam, metrics.path_length_m, &json);
-  if (fusion) json.Set("lo.fusion_corrections", fusion->corrections());
   WriteFileAtomic(out + "/metrics.json", json.ToString());
 
   std::printf("viqu run %s: %.1f s simulated in %.1f s (real-time factor %.2fx), path %.2f m, %d frames, "

@@ -164,8 +164,6 @@ int RunSlamCommand(const SlamArgs& args) {
     gt_out.Close();
   }
   const SlamSummary summary = run->Finish(gt, path, &json);
-  json.Set("lo.fused", fusion != nullptr);
-  if (fusion) json.Set("lo.fusion_corrections", fusion->corrections());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   json.Set("timing.wall_time_s", wall);
   WriteFileAtomic(out + "/metrics.json", json.ToString());

@@ -63,6 +63,11 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   json->Set("slam.input", system_.settings().input);
   json->Set("slam.mapping_mode", system_.settings().mapping.mode);
   json->Set("slam.settings_file", system_.settings().source_file);
+  json->Set("lo.fused", fusion_ != nullptr);
+  if (fusion_) {
+    json->Set("lo.fusion_corrections", fusion_->corrections());
+    json->Set("lo.frames_carried", fusion_->frames_carried());
+  }
   if (!gt.empty() && est_.size() >= 3) {
     const eval::AteResult ate = eval::ComputeAte(est_, gt);
     const eval::ErrorStats rpe = eval::ComputeRpe(est_, gt, 1);

@@ -70,7 +70,7 @@ TEST(LegImuKf, AVelocityMeasurementAndItsMahalanobisDistance) {
   kf.Reset(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), FeetAround(Eigen::Vector3d::Zero()), 0.01, 0.03, 0.01);
   const Eigen::Vector3d v(0.05, 0, 0);
   // d^2 = 0.05^2 / (0.03^2 + 0.04^2) = 1.
-  EXPECT_NEAR(kf.VelocityMahalanobis2(v, 0.04), 1.0, 1e-12);
+  EXPECT_NEAR(kf.VelocityInnovationMahalanobis2(v - kf.velocity(), 0.04), 1.0, 1e-12);
   kf.UpdateVelocity(v, 0.04);
   // Gain 0.03^2 / (0.03^2 + 0.04^2) = 0.36.
   EXPECT_NEAR(kf.velocity().x(), 0.36 * 0.05, 1e-12);

@@ -74,10 +74,9 @@ void LegImuKf::UpdateVelocity(const Eigen::Vector3d& v_w, double std_mps) {
   P_ = 0.5 * (P_ + P_.transpose()).eval();
 }
 
-double LegImuKf::VelocityMahalanobis2(const Eigen::Vector3d& v_w, double std_mps) const {
+double LegImuKf::VelocityInnovationMahalanobis2(const Eigen::Vector3d& y, double std_mps) const {
   Eigen::Matrix3d S = P_.block<3, 3>(3, 3);
   S.diagonal().array() += std_mps * std_mps;
-  const Eigen::Vector3d y = v_w - x_.segment<3>(3);
   return y.dot(S.llt().solve(y));
 }
 

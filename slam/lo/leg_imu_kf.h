@@ -46,14 +46,13 @@ class LegImuKf {
   // The body velocity measured through a standing foot (m/s) with an isotropic standard deviation.
   void UpdateVelocity(const Eigen::Vector3d& v_w, double std_mps);
 
-  // Squared Mahalanobis distance of a velocity measurement from the prediction (before any update
-  // with it): y^T (P_vv + std^2 I)^-1 y with y = v_w - v.
-  double VelocityMahalanobis2(const Eigen::Vector3d& v_w, double std_mps) const;
+  // Squared Mahalanobis distance y^T (P_vv + std^2 I)^-1 y of a velocity innovation y (a measured
+  // velocity minus the filter's, before any update with it) of isotropic standard deviation std.
+  double VelocityInnovationMahalanobis2(const Eigen::Vector3d& y, double std_mps) const;
 
   Eigen::Vector3d position() const { return x_.segment<3>(0); }
   Eigen::Vector3d velocity() const { return x_.segment<3>(3); }
   Eigen::Vector3d foot(int leg) const { return x_.segment<3>(6 + 3 * leg); }
-  const Vec& state() const { return x_; }
   const Mat& covariance() const { return P_; }
 
   // Shifts the whole state (body and feet) by dp (m): a correction of position from elsewhere

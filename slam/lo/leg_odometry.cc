@@ -4,8 +4,6 @@
 #include <chrono>
 #include <cmath>
 
-#include <Eigen/Cholesky>
-
 #include "common/errors.h"
 
 namespace viqu::lo {
@@ -36,6 +34,7 @@ LegOdometry::LegOdometry(const slam::LegOdometrySettings& settings, const kin::L
   if (settings_.contact != "schedule" && settings_.contact != "touch" && settings_.contact != "estimated") {
     throw InputError("lo.contact must be schedule, touch or estimated, not '" + settings_.contact + "'");
   }
+  estimated_contact_ = settings_.contact == "estimated";
 }
 
 void LegOdometry::Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body) {
@@ -74,14 +73,12 @@ void LegOdometry::AddImu(const ImuSample& s) {
   attitude_.Add(s);
   // The previous sample's acceleration held over the interval, as the gyro is.
   const double dt = last_imu_ns_ ? (s.t_ns - *last_imu_ns_) * 1e-9 : 0.0;
+  // A stance foot that holds stays put but for its rolling; a swing or slipping foot is free.
   std::array<double, kNumLegs> foot_noise;
-  for (int i = 0; i < kNumLegs; ++i) {
-    const bool pinned = feet_[i].contact && !feet_[i].slipping;
-    foot_noise[i] = pinned ? settings_.stance_foot_noise : settings_.swing_foot_noise;
-  }
   std::array<Eigen::Vector3d, kNumLegs> foot_vel;
   for (int i = 0; i < kNumLegs; ++i) {
     const bool pinned = feet_[i].contact && !feet_[i].slipping;
+    foot_noise[i] = pinned ? settings_.stance_foot_noise : settings_.swing_foot_noise;
     foot_vel[i] = pinned ? roll_w_[i] : Eigen::Vector3d::Zero();
   }
   kf_.Predict(dt, last_accel_w_, settings_.accel_noise, foot_noise, foot_vel);
@@ -93,7 +90,7 @@ void LegOdometry::AddImu(const ImuSample& s) {
 void LegOdometry::AddContact(const ContactReading& c) { reported_stance_ = c.stance; }
 
 std::array<bool, kNumLegs> LegOdometry::ContactOf(const std::array<Eigen::Vector3d, kNumLegs>& rel_w) const {
-  if (settings_.contact != "estimated") return reported_stance_;
+  if (!estimated_contact_) return reported_stance_;
   // Estimated: the feet lowest along gravity are on the ground (flat-ground assumption; a slope
   // across the trunk's length tilts this, which is why it is not the default).
   double lowest = rel_w[0].z();
@@ -134,7 +131,6 @@ void LegOdometry::AddJoints(const JointState& js) {
   const int64_t touchdown_ns = std::llround(settings_.touchdown_s * 1e9);
   const int64_t window_ns = std::llround(settings_.velocity_window_s * 1e9);
   const int64_t min_window_ns = std::llround(settings_.slip_min_window_s * 1e9);
-  const Eigen::Matrix3d P_vv = kf_.covariance().block<3, 3>(3, 3);
   // Gate every stance foot against the prediction before any of them updates it.
   std::array<std::optional<Eigen::Vector3d>, kNumLegs> v_foot;  // body velocity through each foot, over its window
   std::array<double, kNumLegs> v_std{};                        // and its standard deviation (m/s)
@@ -160,10 +156,7 @@ void LegOdometry::AddJoints(const JointState& js) {
     v_std[i] = settings_.kin_velocity_noise_mps * std::max(1.0, settings_.velocity_window_s / dt);
     // The filter's own mean velocity over the same window (its prediction for now).
     const Eigen::Vector3d v_mean = (kf_.position() - ref->p_w) / dt;
-    Eigen::Matrix3d S = P_vv;
-    S.diagonal().array() += v_std[i] * v_std[i];
-    const Eigen::Vector3d y = *v_foot[i] - v_mean;
-    f.mahalanobis2 = y.dot(S.ldlt().solve(y));
+    f.mahalanobis2 = kf_.VelocityInnovationMahalanobis2(*v_foot[i] - v_mean, v_std[i]);
     f.slipping = f.mahalanobis2 > settings_.slip_gate_chi2;
   }
   for (int i = 0; i < kNumLegs; ++i) {

@@ -66,6 +66,7 @@ class LegOdometry {
   const kin::LegKinematics& kin_;
   AttitudeFilter attitude_;
   LegImuKf kf_;
+  bool estimated_contact_ = false;  // lo.contact is estimated (the others come through AddContact)
   bool started_ = false;
   bool feet_placed_ = false;
   std::optional<int64_t> last_imu_ns_;
