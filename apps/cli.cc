@@ -1,5 +1,6 @@
 #include "apps/cli.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <utility>
@@ -9,23 +10,32 @@
 namespace viqu::app {
 namespace {
 
+// The largest RPE frame distance --delta accepts: no trajectory of a run is longer.
+constexpr long long kMaxDeltaFrames = 1'000'000;
+
 const char* const kRunUsage =
-    "viqu run SCENARIO.yaml [--out DIR] [--set key.path=value ...] [--no-slam] [--record] [--record-tum] [--video]\n"
+    "viqu run SCENARIO.yaml [--out DIR] [--force] [--set key.path=value ...] [--no-slam] [--record] [--record-tum]\n"
+    "         [--video]\n"
     "    simulate the scenario, run SLAM live and write the run folder (default runs/NAME)\n"
-    "    --out DIR        run folder\n"
+    "    --out DIR        run folder; replaced as a whole when the run ends (an earlier run there is gone)\n"
+    "    --force          let --out replace a non-empty folder that holds no viqu run\n"
     "    --set K=V        override a scenario key (repeatable), e.g. --set sensors.camera.rate_hz=10\n"
     "    --no-slam        simulate and record ground truth only\n"
     "    --record         also write an EuRoC-layout dataset under DIR/dataset\n"
     "    --record-tum     also write a TUM RGB-D dataset of the left camera under DIR/dataset_tum\n"
     "    --video          also write DIR/video.mp4\n";
 const char* const kSlamUsage =
-    "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR] [--masks DIR]\n"
-    "          [--set key.path=value ...]\n"
+    "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--camera FILE] [--out DIR] [--force]\n"
+    "          [--masks DIR] [--set key.path=value ...]\n"
     "    replay a recorded run folder or a public dataset through SLAM\n"
     "    --format F       viqu (a run folder written with --record; default), euroc (EuRoC MAV,\n"
     "                     rectified on reading), tum (TUM RGB-D; tracks in rgbd mode)\n"
     "    --config FILE    SLAM settings (default slam/config/default.yaml)\n"
-    "    --out DIR        output folder (default runs/slam-<dataset folder name>)\n"
+    "    --camera FILE    camera calibration: viqu's camera.yaml or an ORB-SLAM2/ORB-SLAM3 settings file\n"
+    "                     (Camera.fx... or Camera1.fx...); for a TUM folder without camera.yaml it is needed\n"
+    "                     unless the folder name says freiburg1/2/3\n"
+    "    --out DIR        output folder (default runs/slam-<dataset folder name>), replaced as a whole\n"
+    "    --force          let --out replace a non-empty folder that holds no viqu run\n"
     "    --masks DIR      per-frame 16-bit instance PNGs named like the images, plus\n"
     "                     DIR/instances.csv (id,category,name); see docs/MASKS.md\n"
     "    --set K=V        override a SLAM settings key (repeatable), e.g. --set tracking.min_inliers=40\n";
@@ -114,6 +124,9 @@ RunArgs ParseRun(ArgCursor* c) {
       pos.push_back(arg);
     } else if (arg == "--out") {
       a.options.out_dir = c->TakeValue(arg);
+    } else if (arg == "--force") {
+      c->NoValue(arg);
+      a.options.force = true;
     } else if (arg == "--set") {
       a.sets.push_back(c->TakeValue(arg));
       CheckSet("run", a.sets.back());
@@ -154,6 +167,11 @@ SlamArgs ParseSlam(ArgCursor* c) {
       a.config = c->TakeValue(arg);
     } else if (arg == "--out") {
       a.out_dir = c->TakeValue(arg);
+    } else if (arg == "--force") {
+      c->NoValue(arg);
+      a.force = true;
+    } else if (arg == "--camera") {
+      a.camera = c->TakeValue(arg);
     } else if (arg == "--masks") {
       a.masks_dir = c->TakeValue(arg);
     } else if (arg == "--set") {
@@ -170,6 +188,7 @@ SlamArgs ParseSlam(ArgCursor* c) {
 
 EvalArgs ParseEval(ArgCursor* c) {
   EvalArgs a;
+  bool delta_frames_given = false;
   std::vector<std::string> pos;
   while (!c->Done()) {
     const std::string arg = c->Next();
@@ -181,23 +200,30 @@ EvalArgs ParseEval(ArgCursor* c) {
     } else if (arg == "--sim3") {
       c->NoValue(arg);
       a.sim3 = true;
-    } else if (arg == "--delta" || arg == "--delta-m") {
+    } else if (arg == "--delta") {
+      const std::string v = c->TakeValue(arg);
+      char* end = nullptr;
+      errno = 0;
+      const long long n = std::strtoll(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0' || errno == ERANGE || n < 1 || n > kMaxDeltaFrames) {
+        throw UsageError("eval: --delta expects a whole number of frames from 1 to " + std::to_string(kMaxDeltaFrames) +
+                         ", got '" + v + "'");
+      }
+      a.delta_frames = static_cast<int>(n);
+      delta_frames_given = true;
+    } else if (arg == "--delta-m") {
       const std::string v = c->TakeValue(arg);
       char* end = nullptr;
       const double x = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(x > 0)) {
-        throw UsageError("eval: " + arg + " expects a positive number, got '" + v + "'");
+      if (end == v.c_str() || *end != '\0' || !(x > 0) || !std::isfinite(x)) {
+        throw UsageError("eval: --delta-m expects a positive number of metres, got '" + v + "'");
       }
-      if (arg == "--delta") {
-        if (x != std::floor(x)) throw UsageError("eval: --delta expects a whole number of frames, got '" + v + "'");
-        a.delta_frames = static_cast<int>(x);
-      } else {
-        a.delta_m = x;
-      }
+      a.delta_m = x;
     } else {
       UnknownOption("eval", arg);
     }
   }
+  if (delta_frames_given && a.delta_m > 0) throw UsageError("eval: --delta and --delta-m exclude each other");
   ExpectPositionals("eval", pos, 2, pos.empty() ? "EST.txt and GT.txt" : "GT.txt");
   a.estimate = pos[0];
   a.ground_truth = pos[1];
@@ -270,6 +296,18 @@ CliArgs ParseCommandLine(int argc, const char* const argv[]) {
       throw UsageError("help: unknown command '" + args.help_topic + "'");
     }
     return args;
+  }
+  for (int i = 0; i < argc; ++i) {
+    if (i > 0) args.command_line += ' ';
+    const std::string arg = argv[i];
+    const bool plain = !arg.empty() && arg.find_first_of(" \t\n'\"\\$`*?[]{}()<>|&;#~") == std::string::npos;
+    if (plain) {
+      args.command_line += arg;
+    } else {
+      args.command_line += '\'';
+      for (char ch : arg) args.command_line += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+      args.command_line += '\'';
+    }
   }
   ArgCursor cursor(argc, argv, 2, command);
   if (command == "run") {

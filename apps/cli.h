@@ -13,13 +13,15 @@ struct RunArgs {
   RunOptions options;             // out_dir empty when --out was not given
 };
 
-// `viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--out DIR] [--masks DIR]
+// `viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--camera FILE] [--out DIR] [--force] [--masks DIR]
 //  [--set key.path=value ...]`
 struct SlamArgs {
   std::string dataset_dir;        // recorded run folder or public dataset
   std::string format = "viqu";    // viqu | euroc | tum
   std::string config;             // SLAM settings file; empty = slam/config/default.yaml
   std::string out_dir;            // empty when --out was not given
+  bool force = false;             // --force: --out may replace a non-empty folder holding no run
+  std::string camera;             // --camera: calibration file; empty = the dataset's own
   std::string masks_dir;          // instance masks (docs/MASKS.md); empty when --masks was not given
   std::vector<std::string> sets;  // "key.path=value" SLAM settings overrides, in command-line order
 };
@@ -52,6 +54,7 @@ enum class Command { kHelp, kRun, kSlam, kEval, kSweep, kView };
 struct CliArgs {
   Command command = Command::kHelp;
   std::string help_topic;         // kHelp: "" for the overview, else a subcommand name
+  std::string command_line;       // the whole command, quoted for a shell (recorded in run folders)
   RunArgs run;
   SlamArgs slam;
   EvalArgs eval;

@@ -3,11 +3,14 @@
 #include <cstdio>
 
 #include "common/json_writer.h"
+#include "common/run_folder.h"
 #include "slam/eval/trajectory_error.h"
 
 namespace viqu::app {
 
 int RunEval(const EvalArgs& args) {
+  RequireNotInIncompleteRun(args.estimate);
+  RequireNotInIncompleteRun(args.ground_truth);
   const eval::Trajectory est = eval::ReadTumTrajectory(args.estimate);
   const eval::Trajectory gt = eval::ReadTumTrajectory(args.ground_truth);
   const eval::AteResult ate = eval::ComputeAte(est, gt, args.sim3);

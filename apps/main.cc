@@ -11,6 +11,7 @@
 #include "apps/slam_command.h"
 #include "apps/usage_error.h"
 #include "common/errors.h"
+#include "common/stop_signal.h"
 #include "scenario/scenario_loader.h"
 
 namespace viqu::app {
@@ -25,9 +26,10 @@ int NotImplemented(const std::string& command) {
   return kExitBadInput;
 }
 
-int Run(const RunArgs& args) {
+int Run(const RunArgs& args, const std::string& command_line) {
   const Scenario scenario = LoadScenario(args.scenario, args.sets);
   RunOptions options = args.options;
+  options.command_line = command_line;
   if (options.out_dir.empty()) options.out_dir = "runs/" + scenario.name;
   return RunScenario(scenario, options);
 }
@@ -37,8 +39,8 @@ int Dispatch(const CliArgs& args) {
     case Command::kHelp:
       std::fputs(UsageText(args.help_topic).c_str(), stdout);
       return kExitOk;
-    case Command::kRun: return Run(args.run);
-    case Command::kSlam: return RunSlamCommand(args.slam);
+    case Command::kRun: return Run(args.run, args.command_line);
+    case Command::kSlam: return RunSlamCommand(args.slam, args.command_line);
     case Command::kEval: return RunEval(args.eval);
     case Command::kSweep: return NotImplemented("sweep");
     case Command::kView: return NotImplemented("view");
@@ -47,6 +49,8 @@ int Dispatch(const CliArgs& args) {
 }
 
 int Main(int argc, const char* const argv[]) {
+  // SIGINT/SIGTERM stop a run at a frame boundary with its folder marked incomplete.
+  InstallStopSignalHandlers();
   try {
     return Dispatch(ParseCommandLine(argc, argv));
   } catch (const UsageError& e) {

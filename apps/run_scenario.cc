@@ -18,6 +18,8 @@
 #include "apps/slam_run.h"
 #include "common/atomic_file.h"
 #include "common/errors.h"
+#include "common/run_folder.h"
+#include "common/stop_signal.h"
 #include "scenario/scenario_loader.h"
 #include "sim/camera_noise.h"
 #include "sim/encoder_model.h"
@@ -89,14 +91,6 @@ class VideoOutput {
   bool done_ = false;
 };
 
-std::string ResolveOutDir(const Scenario& s, const RunOptions& opt) {
-  const std::string dir = opt.out_dir.empty() ? "runs/" + s.name : opt.out_dir;
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw RunError("cannot create run folder " + dir + ": " + ec.message());
-  return dir;
-}
-
 sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const PinholeIntrinsics& k) {
   sim::EurocRig rig;
   rig.camera = s.sensors.camera;
@@ -116,7 +110,6 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   if (s.robot.command.follow == "estimate" && !opt.slam) {
     throw InputError(s.source_file + ": robot.command.follow: estimate needs the estimator; it cannot run with --no-slam");
   }
-  const std::string out = ResolveOutDir(s, opt);
   // SLAM settings: the settings file with the scenario's slam.mode / slam.dynamic keys on top; the
   // resolved scenario records the values in effect.
   std::optional<slam::SlamSettings> settings;
@@ -128,6 +121,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     resolved.slam.mode = settings->mode;
     resolved.slam.dynamic = DynamicConfig{d.method, d.alpha, d.beta, d.gamma, d.th_d, d.window_s, d.window_n};
   }
+  // Everything is checked: from here on the run writes its folder (common/run_folder.h).
+  RunFolderWriter folder(opt.out_dir.empty() ? "runs/" + s.name : opt.out_dir, opt.force, opt.command_line);
+  const std::string& out = folder.path();
   WriteFileAtomic(out + "/scenario.yaml", ScenarioToYaml(resolved));
 
   RobotRig rig(s);
@@ -193,8 +189,10 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   const bool lo_touch = lo && settings->lo.contact == "touch";
   const bool lo_schedule = lo && settings->lo.contact == "schedule";
   Eigen::Isometry3d visual_T_w_body = ToIsometry(world.GroundTruth().T_w_body);
+  int stop_signal = 0;
   while (true) {
     const int64_t t_ns = world.time_ns();
+
     if (sensors.imu_clock.Due(t_ns)) {
       const ImuSample imu = sensors.imu.Measure(t_ns, world.TrueAccel(), world.TrueGyro());
       if (recorder) recorder->AddImu(imu);
@@ -275,6 +273,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     }
     if (world.TrunkTiltRad() > kFallTiltRad || world.TrunkTouchesGround()) metrics.fell = true;
     if (t_ns >= end_ns || (metrics.fell && !s.robot.allow_fall)) break;
+    // A stop request (SIGINT, SIGTERM) ends the run here, between two physics steps: every
+    // sample and frame so far is processed, and the outputs are finished as at the end.
+    if ((stop_signal = StopSignal()) != 0) break;
     if (steer_by_estimate) {
       rig.Step(Pose2Of(fused_lo ? fused_lo->T_w_body() : visual_T_w_body));
     } else {
@@ -298,17 +299,29 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   if (lo) lo_summary = lo->Finish(gt_cam, metrics.path_length_m, &json);
   WriteFileAtomic(out + "/metrics.json", json.ToString());
 
+  const int exit_code = metrics.fell && !s.robot.allow_fall ? 1 : 0;
+  if (stop_signal != 0) {
+    char reason[128];
+    std::snprintf(reason, sizeof(reason), "%s at simulated time %.3f s of %.3f s", SignalName(stop_signal),
+                  metrics.sim_time_s, s.duration_s);
+    folder.Interrupted(reason);
+    std::fprintf(stderr, "viqu: run stopped by %s; %s holds the outputs so far, marked incomplete (%s)\n", reason,
+                 folder.final_path().c_str(), kRunIncompleteMarker);
+    return ExitCodeForSignal(stop_signal);
+  }
+  folder.Complete(exit_code);
   std::printf("viqu run %s: %.1f s simulated in %.1f s (real-time factor %.2fx), path %.2f m, %d frames, "
               "render %.1f ms median%s\n",
               s.name.c_str(), metrics.sim_time_s, metrics.wall_time_s, metrics.sim_time_s / metrics.wall_time_s,
               metrics.path_length_m, metrics.frames, Median(metrics.render_ms), metrics.fell ? ", ROBOT FELL" : "");
   if (slam) std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
   if (lo) std::printf("%s\n", LoSummaryLine(lo_summary).c_str());
-  std::printf("outputs: %s/{scenario.yaml,trajectory_gt.txt,metrics.json%s%s%s}\n", out.c_str(),
+  std::printf("outputs: %s/{scenario.yaml,trajectory_gt.txt,metrics.json%s%s%s,run_complete.json}\n",
+              folder.final_path().c_str(),
               slam ? ",trajectory_est.txt,tracking.csv,slam_settings.yaml" : "",
               recorder ? (tum_recorder ? ",dataset/,dataset_tum/" : ",dataset/") : (tum_recorder ? ",dataset_tum/" : ""),
               video ? ",video.mp4" : "");
-  return metrics.fell && !s.robot.allow_fall ? 1 : 0;
+  return exit_code;
 }
 
 }  // namespace viqu::app

@@ -11,6 +11,8 @@
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "common/json_writer.h"
+#include "common/run_folder.h"
+#include "common/stop_signal.h"
 #include "sim/trajectory_writer.h"
 #include "kinematics/leg_kinematics.h"
 #include "slam/fusion/visual_leg_fusion.h"
@@ -84,7 +86,7 @@ class ProprioceptionFeed {
 
 }  // namespace
 
-int RunSlamCommand(const SlamArgs& args) {
+int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   const auto wall_start = std::chrono::steady_clock::now();
   const io::DatasetFormat format = io::ParseDatasetFormat(args.format);
   // Settings first: a mistyped --set is reported before the dataset is scanned.
@@ -102,10 +104,17 @@ int RunSlamCommand(const SlamArgs& args) {
     throw InputError(args.dataset_dir + ": settings ask for stereo input but the dataset has no right camera");
   }
 
-  const std::string out = args.out_dir.empty() ? DefaultOutDir(args.dataset_dir) : args.out_dir;
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) throw RunError("cannot create output folder " + out + ": " + ec.message());
+  const std::string out_dir = args.out_dir.empty() ? DefaultOutDir(args.dataset_dir) : args.out_dir;
+  {
+    // The output folder is replaced as a whole: it must not hold the dataset being read.
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path o = fs::weakly_canonical(out_dir, ec), d = fs::weakly_canonical(args.dataset_dir, ec);
+    const auto [mo, md] = std::mismatch(o.begin(), o.end(), d.begin(), d.end());
+    if (mo == o.end()) throw InputError("--out " + out_dir + " holds the dataset " + args.dataset_dir + "; choose another output folder");
+  }
+  RunFolderWriter folder(out_dir, args.force, command_line);
+  const std::string& out = folder.path();
   WriteFileAtomic(out + "/slam_settings.yaml", slam::SlamSettingsToYaml(settings));
 
   const eval::Trajectory gt = reader->ground_truth().value_or(eval::Trajectory{});
@@ -132,7 +141,8 @@ int RunSlamCommand(const SlamArgs& args) {
   StereoFrame frame;
   int64_t first_t = 0, last_t = 0;
   int frames = 0;
-  while (reader->Next(&frame)) {
+  int stop_signal = 0;
+  while ((stop_signal = StopSignal()) == 0 && reader->Next(&frame)) {
     if (!run) {
       // The map is anchored at the ground-truth pose of the first frame when there is one, as
       // the live run anchors it, so that both give the same trajectory.
@@ -149,7 +159,8 @@ int RunSlamCommand(const SlamArgs& args) {
       std::fprintf(stderr, "viqu: frame %d (t=%s s): tracking lost\n", frames, sim::FormatSeconds(r.t_ns).c_str());
     }
   }
-  if (!run) throw InputError(args.dataset_dir + ": the dataset has no readable frames");
+  if (!run && stop_signal == 0) throw InputError(args.dataset_dir + ": the dataset has no readable frames");
+  if (!run) return ExitCodeForSignal(stop_signal);  // stopped before the first frame: nothing to keep
 
   JsonWriter json;
   json.Set("dataset", args.dataset_dir);
@@ -167,10 +178,20 @@ int RunSlamCommand(const SlamArgs& args) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   json.Set("timing.wall_time_s", wall);
   WriteFileAtomic(out + "/metrics.json", json.ToString());
+  if (stop_signal != 0) {
+    const std::string reason = std::string(SignalName(stop_signal)) + " after " + std::to_string(frames) + " frames";
+    folder.Interrupted(reason);
+    std::fprintf(stderr, "viqu: replay stopped by %s; %s holds the outputs so far, marked incomplete (%s)\n",
+                 reason.c_str(), folder.final_path().c_str(), kRunIncompleteMarker);
+    return ExitCodeForSignal(stop_signal);
+  }
+  folder.Complete(0);
+  if (!summary.ate_unavailable.empty()) std::fprintf(stderr, "viqu: note: no ATE: %s\n", summary.ate_unavailable.c_str());
   std::printf("viqu slam %s (%s): %d frames in %.1f s\n", args.dataset_dir.c_str(), io::DatasetFormatName(format),
               frames, wall);
   std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
-  std::printf("outputs: %s/{trajectory_est.txt,%smetrics.json,slam_settings.yaml}\n", out.c_str(),
+  std::printf("outputs: %s/{trajectory_est.txt,%smetrics.json,slam_settings.yaml,run_complete.json}\n",
+              folder.final_path().c_str(),
               gt.empty() ? "" : "trajectory_gt.txt,");
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "apps/run_metrics.h"
+#include "common/errors.h"
 #include "slam/eval/trajectory_error.h"
 
 namespace viqu::app {
@@ -68,7 +69,9 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
     json->Set("lo.fusion_corrections", fusion_->corrections());
     json->Set("lo.frames_carried", fusion_->frames_carried());
   }
-  if (!gt.empty() && est_.size() >= 3) {
+  if (gt.empty()) return s;
+  // The trajectory is kept whatever happens here; the metrics say why an ATE is missing.
+  try {
     const eval::AteResult ate = eval::ComputeAte(est_, gt);
     const eval::ErrorStats rpe = eval::ComputeRpe(est_, gt, 1);
     json->Set("ate.rmse_m", ate.ate.rmse);
@@ -85,6 +88,9 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
     s.ate_rmse_m = ate.ate.rmse;
     s.ate_pct_path = path_length_m > 0 ? 100.0 * ate.ate.rmse / path_length_m : 0;
     s.rpe_rmse_m = rpe.rmse;
+  } catch (const InputError& e) {
+    s.ate_unavailable = std::string("the estimate cannot be aligned with the ground truth: ") + e.what();
+    json->Set("ate.unavailable", s.ate_unavailable);
   }
   return s;
 }
@@ -97,6 +103,7 @@ std::string SlamSummaryLine(const SlamSummary& s) {
     buf[0] = 0;
   }
   std::string out = buf;
+  if (!s.ate_unavailable.empty()) out += "no ATE (" + s.ate_unavailable + "), ";
   std::snprintf(buf, sizeof buf, "%d lost of %d frames, %d keyframes, %d map points, tracking %.1f ms median (p95 %.1f)",
                 s.lost, s.frames, s.keyframes, s.map_points, s.track_ms_median, s.track_ms_p95);
   return out + buf;

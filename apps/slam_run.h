@@ -23,6 +23,7 @@ struct SlamSummary {
   double ate_rmse_m = 0, ate_pct_path = 0, rpe_rmse_m = 0;
   int frames = 0, lost = 0, keyframes = 0, map_points = 0;
   double track_ms_median = 0, track_ms_p95 = 0;
+  std::string ate_unavailable;  // why there is ground truth but no ATE (empty otherwise)
 };
 
 class SlamRun {

@@ -13,6 +13,7 @@
 
 #include "apps/cli.h"
 #include "apps/usage_error.h"
+#include "tests/viqu_program.h"
 
 namespace viqu::app {
 namespace {
@@ -41,6 +42,17 @@ TEST(Cli, RunWithAllOptions) {
   EXPECT_FALSE(a.run.options.slam);
   EXPECT_TRUE(a.run.options.record);
   EXPECT_TRUE(a.run.options.video);
+}
+
+TEST(Cli, ForceCameraAndTheRecordedCommandLine) {
+  const CliArgs a = Parse({"run", "s.yaml", "--out", "my runs/x", "--force"});
+  EXPECT_TRUE(a.run.options.force);
+  EXPECT_EQ(a.command_line, "viqu run s.yaml --out 'my runs/x' --force");
+  const CliArgs b = Parse({"slam", "d", "--camera", "cam.yaml", "--force"});
+  EXPECT_EQ(b.slam.camera, "cam.yaml");
+  EXPECT_TRUE(b.slam.force);
+  EXPECT_FALSE(Parse({"run", "s.yaml"}).run.options.force);
+  EXPECT_EQ(Parse({"run", "it's.yaml"}).command_line, "viqu run 'it'\\''s.yaml'");
 }
 
 TEST(Cli, RunDefaults) {
@@ -119,28 +131,25 @@ TEST(Cli, UsageErrors) {
             "slam: --set expects key.path=value, got 'tracking.min_inliers'");
   EXPECT_EQ(UsageErrorOf({"slam", "d", "--masks"}), "slam: option --masks needs a value");
   EXPECT_EQ(UsageErrorOf({"eval", "est.txt"}), "eval: missing GT.txt");
+  // --delta is a frame count that fits; it does not wrap or truncate, and excludes --delta-m.
+  EXPECT_EQ(UsageErrorOf({"eval", "e", "g", "--delta", "2147483648"}),
+            "eval: --delta expects a whole number of frames from 1 to 1000000, got '2147483648'");
+  EXPECT_EQ(UsageErrorOf({"eval", "e", "g", "--delta", "1.5"}),
+            "eval: --delta expects a whole number of frames from 1 to 1000000, got '1.5'");
+  EXPECT_EQ(UsageErrorOf({"eval", "e", "g", "--delta-m", "inf"}),
+            "eval: --delta-m expects a positive number of metres, got 'inf'");
+  EXPECT_EQ(UsageErrorOf({"eval", "e", "g", "--delta", "3", "--delta-m", "0.5"}),
+            "eval: --delta and --delta-m exclude each other");
+  EXPECT_EQ(Parse({"eval", "e", "g", "--delta", "1000000"}).eval.delta_frames, 1000000);
+  EXPECT_EQ(UsageErrorOf({"run", "s.yaml", "--force=yes"}), "run: option --force takes no value");
   EXPECT_EQ(UsageErrorOf({"sweep", "s.yaml", "--jobs", "0"}),
             "sweep: --jobs expects a whole number from 1 to 1024, got '0'");
   EXPECT_EQ(UsageErrorOf({"help", "fly"}), "help: unknown command 'fly'");
 }
 
 // The program's exit codes and messages (DESIGN.md): 0 ok, 2 bad input or usage.
-struct ProgramResult {
-  int exit_code = -1;  // process exit status
-  std::string output;  // stdout and stderr together
-};
-
-ProgramResult RunViqu(const std::string& args) {
-  ProgramResult r;
-  const std::string cmd = std::string(VIQU_BINARY_DIR) + "/apps/viqu " + args + " 2>&1";
-  std::FILE* p = ::popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  char buf[512];
-  for (size_t n; (n = std::fread(buf, 1, sizeof(buf), p)) > 0;) r.output.append(buf, n);
-  const int status = ::pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using viqu::testing::ProgramResult;
+using viqu::testing::RunViqu;
 
 TEST(CliProgram, ExitCodesAndMessages) {
   if (!std::filesystem::exists(std::string(VIQU_BINARY_DIR) + "/apps/viqu")) {

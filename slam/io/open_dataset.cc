@@ -1,6 +1,7 @@
 #include "slam/io/open_dataset.h"
 
 #include "common/errors.h"
+#include "common/run_folder.h"
 #include "slam/io/euroc_dataset_reader.h"
 #include "slam/io/tum_dataset_reader.h"
 #include "slam/io/viqu_dataset_reader.h"
@@ -25,6 +26,9 @@ const char* DatasetFormatName(DatasetFormat format) {
 
 std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format,
                                            const std::string& masks_dir) {
+  // A dataset recorded by a run that did not finish, or a run folder without its completion
+  // marker, is refused before anything is read.
+  RequireNotInIncompleteRun(dir);
   switch (format) {
     case DatasetFormat::kViqu: return std::make_unique<ViquDatasetReader>(dir, masks_dir);
     case DatasetFormat::kEuroc: return std::make_unique<EurocDatasetReader>(dir, masks_dir);
