@@ -31,6 +31,7 @@
 #include "sim/trajectory_writer.h"
 #include "sim/depth_quantisation.h"
 #include "sim/tum_recorder.h"
+#include "slam/features/orb_extractor.h"
 #include "slam/settings/slam_settings.h"
 
 namespace viqu::app {
@@ -117,6 +118,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   if (opt.slam) {
     const std::string settings_path = s.slam.config.empty() ? slam::DefaultSlamSettingsPath() : s.slam.config;
     settings = slam::LoadSlamSettings(settings_path, s.slam.settings_overrides);
+    const std::string pyramid = slam::PyramidProblem(settings->orb.scale_factor, settings->orb.num_levels,
+                                                     s.sensors.camera.width, s.sensors.camera.height);
+    if (!pyramid.empty()) throw InputError(settings->pyramid_where + ": " + pyramid);
     const slam::DynamicSettings& d = settings->dynamic;
     resolved.slam.mode = settings->mode;
     resolved.slam.dynamic = DynamicConfig{d.method, d.alpha, d.beta, d.gamma, d.th_d, d.window_s, d.window_n};

@@ -15,6 +15,7 @@
 #include "common/stop_signal.h"
 #include "sim/trajectory_writer.h"
 #include "kinematics/leg_kinematics.h"
+#include "slam/features/orb_extractor.h"
 #include "slam/fusion/visual_leg_fusion.h"
 #include "slam/io/open_dataset.h"
 #include "slam/io/proprioception_reader.h"
@@ -92,7 +93,10 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   // Settings first: a mistyped --set is reported before the dataset is scanned.
   slam::SlamSettings settings =
       slam::LoadSlamSettings(args.config.empty() ? slam::DefaultSlamSettingsPath() : args.config, args.sets);
-  std::unique_ptr<io::DatasetReader> reader = io::OpenDataset(args.dataset_dir, format, args.masks_dir);
+  std::unique_ptr<io::DatasetReader> reader = io::OpenDataset(args.dataset_dir, format, args.masks_dir, args.camera);
+  const PinholeIntrinsics& k = reader->intrinsics();
+  std::printf("viqu slam: camera %s: fx %g fy %g cx %g cy %g, %dx%d\n", reader->calibration_source().c_str(), k.fx, k.fy,
+              k.cx, k.cy, k.width, k.height);
   if (format == io::DatasetFormat::kTum && settings.input != "rgbd") {
     std::fprintf(stderr, "viqu: note: TUM RGB-D has no right image; tracking in rgbd mode\n");
     settings.input = "rgbd";
@@ -100,6 +104,9 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   if (settings.input == "rgbd" && !reader->HasDepth()) {
     throw InputError(args.dataset_dir + ": settings ask for rgbd input but the dataset has no depth images");
   }
+  const std::string pyramid = slam::PyramidProblem(settings.orb.scale_factor, settings.orb.num_levels,
+                                                   reader->intrinsics().width, reader->intrinsics().height);
+  if (!pyramid.empty()) throw InputError(settings.pyramid_where + ": " + pyramid);
   if (settings.input == "stereo" && reader->baseline_m() <= 0) {
     throw InputError(args.dataset_dir + ": settings ask for stereo input but the dataset has no right camera");
   }
@@ -115,7 +122,10 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   }
   RunFolderWriter folder(out_dir, args.force, command_line);
   const std::string& out = folder.path();
-  WriteFileAtomic(out + "/slam_settings.yaml", slam::SlamSettingsToYaml(settings));
+  char camera_line[512];
+  std::snprintf(camera_line, sizeof camera_line, "# camera calibration: %s (fx %g, fy %g, cx %g, cy %g, %dx%d)\n",
+                reader->calibration_source().c_str(), k.fx, k.fy, k.cx, k.cy, k.width, k.height);
+  WriteFileAtomic(out + "/slam_settings.yaml", camera_line + slam::SlamSettingsToYaml(settings));
 
   const eval::Trajectory gt = reader->ground_truth().value_or(eval::Trajectory{});
   // Mode full on a viqu recording with its proprioceptive streams: leg odometry + IMU fused with
@@ -165,6 +175,13 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   JsonWriter json;
   json.Set("dataset", args.dataset_dir);
   json.Set("format", io::DatasetFormatName(format));
+  json.Set("camera.calibration", reader->calibration_source());
+  json.Set("camera.fx", k.fx);
+  json.Set("camera.fy", k.fy);
+  json.Set("camera.cx", k.cx);
+  json.Set("camera.cy", k.cy);
+  json.Set("camera.width", k.width);
+  json.Set("camera.height", k.height);
   if (!args.masks_dir.empty()) json.Set("masks", args.masks_dir);
   json.Set("sim_time_s", (last_t - first_t) * 1e-9);
   const double path = PathLength(gt);

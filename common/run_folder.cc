@@ -92,11 +92,13 @@ void WriteMarker(const std::string& dir, const char* name, const std::string& st
 
 RunFolderWriter::RunFolderWriter(const std::string& final_dir, bool force, const std::string& command_line)
     : command_line_(command_line) {
-  fs::path dir(final_dir);
-  while (!dir.empty() && dir.filename().empty()) dir = dir.parent_path();  // "runs/x/" -> "runs/x"
-  if (dir.empty()) throw InputError("output folder '" + final_dir + "': not a folder name");
+  fs::path dir = fs::path(final_dir).lexically_normal();
+  if (!dir.empty() && !dir.has_filename() && dir.has_relative_path()) dir = dir.parent_path();  // "runs/x/" -> "runs/x"
   final_ = dir.string();
   std::error_code ec;
+  if (dir.empty() || !dir.has_relative_path()) {
+    throw InputError("output folder '" + final_dir + "': not a folder a run can replace (empty or a root)");
+  }
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
     throw InputError("output folder " + final_ + " exists and is not a folder");
   }

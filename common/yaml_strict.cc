@@ -70,6 +70,11 @@ bool ParseIndex(const std::string& text, size_t* index) {
   return true;
 }
 
+// The largest YAML file read: scenarios and settings are a few KiB, and a sweep or a scenario
+// with the most obstacles allowed stays far below this; the bound keeps a wrong path (a huge
+// log, a device) from filling memory.
+constexpr size_t kMaxYamlFileBytes = size_t{16} << 20;
+
 YAML::Node ParseText(const std::string& text, const std::string& name) {
   try {
     return YAML::Load(text);
@@ -90,12 +95,19 @@ YAML::Node LoadYamlFile(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": file not found");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a file");
+  // Devices and pipes (/dev/zero, /dev/stdin) are no configuration files: they may never end.
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text(kMaxYamlFileBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) throw InputError(path + ": read error");
-  return ParseText(text.str(), path);
+  text.resize(static_cast<size_t>(in.gcount()));
+  if (text.size() > kMaxYamlFileBytes) {
+    throw InputError(path + ": larger than " + std::to_string(kMaxYamlFileBytes >> 20) +
+                     " MiB; not a scenario, settings or calibration file");
+  }
+  return ParseText(text, path);
 }
 
 YAML::Node LoadYamlText(const std::string& text, const std::string& name) {

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "common/errors.h"
@@ -12,6 +13,17 @@ namespace viqu::kin {
 namespace {
 
 constexpr double kGeomTol = 1e-9;  // tolerance for "is along the axis" checks (m or unitless)
+
+// Collects urdfdom's errors and warnings (console_bridge) instead of printing them.
+class UrdfMessages : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& message, console_bridge::LogLevel level, const char*, int) override {
+    if (level < console_bridge::CONSOLE_BRIDGE_LOG_WARN) return;
+    if (!text.empty()) text += "; ";
+    text += message;
+  }
+  std::string text;
+};
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& p) {
   double qx, qy, qz, qw;
@@ -61,8 +73,19 @@ LegKinematics LegKinematics::FromUrdfFile(const std::string& path) {
 }
 
 LegKinematics LegKinematics::FromUrdfString(const std::string& xml, const std::string& what) {
-  urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
-  if (!model) throw InputError(what + ": cannot parse URDF");
+  // urdfdom reports parse errors through console_bridge, to stderr by default: catch them, so
+  // that the first line a user sees is ours, naming the file, with urdfdom's reason after it.
+  UrdfMessages messages;
+  console_bridge::useOutputHandler(&messages);
+  urdf::ModelInterfaceSharedPtr model;
+  try {
+    model = urdf::parseURDF(xml);
+  } catch (...) {
+    console_bridge::restorePreviousOutputHandler();
+    throw;
+  }
+  console_bridge::restorePreviousOutputHandler();
+  if (!model) throw InputError(what + ": cannot parse URDF" + (messages.text.empty() ? "" : " (" + messages.text + ")"));
   LegKinematics k;
   for (int i = 0; i < kNumLegs; ++i) {
     const std::string leg = LegName(static_cast<Leg>(i));

@@ -7,7 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 # libqhull-dev: Debian's MuJoCo CMake config lists /usr/include/libqhull_r among its include dirs.
 packages=(
   build-essential cmake pkg-config ccache
-  libmujoco-dev libqhull-dev libeigen3-dev libopencv-dev liburdfdom-dev libceres-dev libyaml-cpp-dev
+  libmujoco-dev libqhull-dev libeigen3-dev libopencv-dev liburdfdom-dev libconsole-bridge-dev zlib1g-dev libceres-dev libyaml-cpp-dev
   libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
   googletest libgtest-dev libbenchmark-dev
 )

@@ -82,9 +82,13 @@ std::string TerrainXml(const TerrainConfig& terrain) {
   return x.str();
 }
 
-void ApplyFloorFriction(mjModel* m, double friction) {
+void ApplyFloorFriction(mjModel* m, double friction, const std::string& world_file) {
   if (!(friction > 0)) throw InputError("terrain.friction must be > 0, got " + Num(friction));
-  const int id = MjIdOrThrow(m, mjOBJ_GEOM, "floor", "world");
+  if (mj_name2id(m, mjOBJ_GEOM, "floor") < 0) {
+    throw InputError(world_file + ": the world has no geom named 'floor' (the ground the robot walks on and the "
+                     "terrain's friction applies to)");
+  }
+  const int id = MjIdOrThrow(m, mjOBJ_GEOM, "floor", world_file);
   m->geom_friction[3 * id] = friction;
 }
 

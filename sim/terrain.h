@@ -26,6 +26,6 @@ std::string TerrainXml(const TerrainConfig& terrain);
 
 // Sets the sliding friction of the geom named `floor`; throws viqu::InputError if it is absent
 // or the friction is not positive.
-void ApplyFloorFriction(mjModel* m, double friction);
+void ApplyFloorFriction(mjModel* m, double friction, const std::string& world_file = "world");
 
 }  // namespace viqu::sim

@@ -30,7 +30,7 @@ World::World(const Scenario& s, const std::array<double, kNumJoints>& q_stand, d
   xml_ = ComposeSceneXml(s, header, {ObstaclesXml(s.obstacles), TerrainXml(s.terrain)});
   model_ = LoadModelString(xml_, s.source_file.empty() ? s.name : s.source_file);
   mjModel* m = model_.get();
-  ApplyFloorFriction(m, s.terrain.friction);
+  ApplyFloorFriction(m, s.terrain.friction, s.world);
   timestep_ns_ = std::llround(m->opt.timestep * 1e9);
 
   const std::string what = s.robot.model;

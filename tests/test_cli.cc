@@ -232,6 +232,22 @@ TEST(CliProgram, SlamTakesSettingsOverridesAndMasks) {
   EXPECT_NE(settings.find("min_inliers: 40\n"), std::string::npos) << settings;
   EXPECT_NE(settings.find("max_hamming: 80\n"), std::string::npos) << settings;
   EXPECT_NE(ReadAll(dir + "/out/metrics.json").find("\"masks\": \"" + dir + "/masks\""), std::string::npos);
+  // The calibration in use is printed and recorded.
+  EXPECT_NE(ok.output.find("camera " + dir + "/tum/camera.yaml: fx 50 fy 50 cx 31.5 cy 23.5, 64x48"), std::string::npos) << ok.output;
+  EXPECT_NE(ReadAll(dir + "/out/metrics.json").find("\"calibration\": \"" + dir + "/tum/camera.yaml\""), std::string::npos);
+  EXPECT_EQ(settings.rfind("# camera calibration: " + dir + "/tum/camera.yaml (fx 50, fy 50, cx 31.5, cy 23.5, 64x48)\n", 0), 0u)
+      << settings;
+  // --camera (an ORB-SLAM2 settings file) replaces the folder's calibration; without any, exit 2.
+  std::ofstream(dir + "/orb.yaml") << "%YAML:1.0\nCamera.fx: 52\nCamera.fy: 52\nCamera.cx: 31.5\nCamera.cy: 23.5\n"
+                                      "DepthMapFactor: 5000.0\nORBextractor.nFeatures: 1000\n";
+  const ProgramResult orb = RunViqu(common + " --camera " + dir + "/orb.yaml");
+  ASSERT_EQ(orb.exit_code, 0) << orb.output;
+  EXPECT_NE(orb.output.find("(ORB-SLAM2 settings): fx 52 fy 52 cx 31.5 cy 23.5, 64x48"), std::string::npos) << orb.output;
+  std::filesystem::remove(dir + "/tum/camera.yaml");
+  const ProgramResult none = RunViqu(common);
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_EQ(none.output.rfind("viqu: " + dir + "/tum: no camera calibration", 0), 0u) << none.output;
+  std::ofstream(dir + "/tum/camera.yaml") << "fx: 50\nfy: 50\ncx: 31.5\ncy: 23.5\nwidth: 64\nheight: 48\n";
 
   // A bad mask is bad input naming the file.
   cv::imwrite(dir + "/masks/1.010000.png", cv::Mat(48, 65, CV_16U, cv::Scalar(0)));

@@ -23,6 +23,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/errors.h"
+#include "common/run_folder.h"
 #include "sim/depth_quantisation.h"
 #include "sim/euroc_recorder.h"
 #include "sim/trajectory_writer.h"
@@ -30,6 +31,7 @@
 #include "slam/io/euroc_dataset_reader.h"
 #include "slam/io/open_dataset.h"
 #include "slam/io/pose_conversions.h"
+#include "slam/io/camera_file.h"
 #include "slam/io/tum_dataset_reader.h"
 #include "slam/io/viqu_dataset_reader.h"
 
@@ -133,7 +135,10 @@ struct ViquRecording {
   sim::EurocRig rig;
 };
 
-ViquRecording RecordViqu(const fs::path& run_dir, int num_frames) {
+ViquRecording RecordViqu(const fs::path& final_dir, int num_frames) {
+  // Written as a run writes its folder: complete, with its marker (common/run_folder.h).
+  RunFolderWriter folder(final_dir.string(), false, "RecordViqu");
+  const fs::path run_dir = folder.path();
   ViquRecording rec;
   rec.rig.camera.width = kW;
   rec.rig.camera.height = kH;
@@ -168,6 +173,7 @@ ViquRecording RecordViqu(const fs::path& run_dir, int num_frames) {
   }
   recorder.Finish();
   gt_file.Close();
+  folder.Complete(0);
   return rec;
 }
 
@@ -545,10 +551,11 @@ TEST(TumDatasetReader, AssociatesLikeAssociatePyAndUsesTheFreiburgCalibration) {
   }
   EXPECT_EQ(stamps, (std::vector<int64_t>{1305031102175304000LL, 1305031102211214000LL, 1305031102275326000LL}));
 
-  const fs::path plain = tmp.path() / "some_sequence";
-  WriteTumSequence(plain, {1.0}, {1.001});
-  WriteText(plain / "groundtruth.txt", "# ground truth\n0.99 1 2 3 0 0 0 1\n1.01 1 2 3 0 0 0 1\n");
-  TumDatasetReader fr3(plain.string());
+  // freiburg3 by its folder name.
+  const fs::path fr3_dir = tmp.path() / "rgbd_dataset_freiburg3_office";
+  WriteTumSequence(fr3_dir, {1.0}, {1.001});
+  WriteText(fr3_dir / "groundtruth.txt", "# ground truth\n0.99 1 2 3 0 0 0 1\n1.01 1 2 3 0 0 0 1\n");
+  TumDatasetReader fr3(fr3_dir.string());
   EXPECT_EQ(fr3.intrinsics().fx, 535.4);
   EXPECT_EQ(fr3.intrinsics().fy, 539.2);
   EXPECT_EQ(fr3.intrinsics().cx, 320.1);
@@ -556,6 +563,10 @@ TEST(TumDatasetReader, AssociatesLikeAssociatePyAndUsesTheFreiburgCalibration) {
   ASSERT_TRUE(fr3.ground_truth().has_value());
   EXPECT_EQ(fr3.ground_truth()->size(), 2u);
 
+  // No calibration and no freiburgN in the name: no guess, the message names --camera.
+  const fs::path plain = tmp.path() / "some_sequence";
+  WriteTumSequence(plain, {1.0}, {1.001});
+  ExpectInputError([&] { TumDatasetReader r(plain.string()); }, {"some_sequence: no camera calibration", "--camera FILE"});
   WriteText(plain / "camera.yaml", "fx: 500\nfy: 501\ncx: 320\ncy: 240\nwidth: 640\nheight: 480\n");
   EXPECT_EQ(TumDatasetReader(plain.string()).intrinsics().fy, 501.0);
   WriteText(plain / "viqu_intrinsics.yaml", "fx: 400\nfy: 401\ncx: 320\ncy: 240\nwidth: 640\nheight: 480\n");
@@ -886,7 +897,7 @@ TEST(DatasetMasks, TumMasksAreNamedLikeTheRgbImagesAndUndistortedWithThem) {
   const fs::path masks = tmp.path() / "masks";
   WriteText(masks / "instances.csv", "#id,category,name\n5,person,alice\n9,furniture,chair\n");
   // freiburg3 (no distortion): the mask comes back exactly.
-  const fs::path fr3 = tmp.path() / "some_sequence";
+  const fs::path fr3 = tmp.path() / "rgbd_dataset_freiburg3_masks";
   WriteTumSequence(fr3, {1.0, 1.1}, {1.001, 1.101});
   cv::Mat ids(480, 640, CV_16U, cv::Scalar(0));
   ids(cv::Rect(100, 50, 80, 200)).setTo(9);
@@ -1000,7 +1011,7 @@ TEST(DatasetIoBadInput, EmptyMalformedOrBackwardsListsNameFileAndLine) {
   ExpectInputError([&] { EurocDatasetReader r(dir.string()); }, {"cam1/sensor.yaml:4:", "T_BS.data"});
 
   // TUM list.
-  const fs::path tum = tmp.path() / "tum";
+  const fs::path tum = tmp.path() / "rgbd_dataset_freiburg3_list";
   WriteTumSequence(tum, {1.0, 1.1}, {1.0, 1.1});
   WriteText(tum / "rgb.txt", "# color\n1.0 rgb/1.000000.png\n1.1\n");
   ExpectInputError([&] { TumDatasetReader r(tum.string()); }, {"rgb.txt:3:", "expected 'timestamp filename'"});
@@ -1058,6 +1069,58 @@ TEST(DatasetIoBadInput, ASingleCorruptImageIsSkippedTwoInARowOrTheFirstAreErrors
   while (reader.Next(&f)) got.push_back(f.t_ns);
   testing::internal::GetCapturedStderr();
   EXPECT_EQ(got, (std::vector<int64_t>{rec.frames[0].t_ns, rec.frames[2].t_ns, rec.frames[3].t_ns}));
+}
+
+TEST(CameraFile, ReadsOrbSlam2AndOrbSlam3SettingsAndViquCameraYaml) {
+  TempDir tmp;
+  const fs::path seq = tmp.path() / "some_sequence";
+  WriteTumSequence(seq, {1.0}, {1.001});
+  // ORB-SLAM2 (TUM1.yaml's layout): no image size (taken from the images), distortion, depth factor.
+  WriteText(tmp.path() / "orb2.yaml", "%YAML:1.0\n\n# Camera calibration\nCamera.fx: 517.306408\nCamera.fy: 516.469215\n"
+            "Camera.cx: 318.643040\nCamera.cy: 255.313989\nCamera.k1: 0.262383\nCamera.k2: -0.953104\n"
+            "Camera.p1: -0.005358\nCamera.p2: 0.002628\nCamera.k3: 1.163314\nCamera.fps: 30.0\nCamera.bf: 40.0\n"
+            "DepthMapFactor: 5000.0\nORBextractor.nFeatures: 1000\nViewer.PointSize: 2\n");
+  const TumCamera orb2 = ReadCameraFile((tmp.path() / "orb2.yaml").string());
+  EXPECT_EQ(orb2.calibration.pinhole.fx, 517.306408);
+  EXPECT_EQ(orb2.calibration.pinhole.cy, 255.313989);
+  EXPECT_EQ(orb2.calibration.pinhole.width, 0);
+  EXPECT_EQ(orb2.calibration.distortion, (std::vector<double>{0.262383, -0.953104, -0.005358, 0.002628, 1.163314}));
+  EXPECT_EQ(orb2.depth_scale, 5000.0);
+  EXPECT_NE(orb2.source.find("ORB-SLAM2"), std::string::npos);
+  TumDatasetReader with_orb2(seq.string(), "", (tmp.path() / "orb2.yaml").string());
+  EXPECT_EQ(with_orb2.intrinsics().width, 640);  // from the first image
+  EXPECT_EQ(with_orb2.intrinsics().height, 480);
+  EXPECT_NE(with_orb2.calibration_source().find("orb2.yaml"), std::string::npos);
+  StereoFrame f;
+  EXPECT_TRUE(with_orb2.Next(&f));
+
+  // ORB-SLAM3: Camera1.*, image size, RGBD.DepthMapFactor; OpenCV matrices elsewhere are ignored.
+  WriteText(tmp.path() / "orb3.yaml", "%YAML:1.0\nFile.version: \"1.0\"\nCamera.type: \"PinHole\"\nCamera1.fx: 535.4\n"
+            "Camera1.fy: 539.2\nCamera1.cx: 320.1\nCamera1.cy: 247.6\nCamera1.k1: 0.0\nCamera1.k2: 0.0\n"
+            "Camera1.p1: 0.0\nCamera1.p2: 0.0\nCamera.width: 640\nCamera.height: 480\nRGBD.DepthMapFactor: 1000.0\n"
+            "Stereo.T_c1_c2: !!opencv-matrix\n  rows: 1\n  cols: 1\n  dt: f\n  data: [1.0]\n");
+  const TumCamera orb3 = ReadCameraFile((tmp.path() / "orb3.yaml").string());
+  EXPECT_EQ(orb3.calibration.pinhole.fy, 539.2);
+  EXPECT_EQ(orb3.calibration.pinhole.width, 640);
+  EXPECT_TRUE(HasNoDistortion(orb3.calibration));
+  EXPECT_EQ(orb3.depth_scale, 1000.0);
+  EXPECT_NE(orb3.source.find("ORB-SLAM3"), std::string::npos);
+
+  // Errors name the file, line and column.
+  WriteText(tmp.path() / "fisheye.yaml", "%YAML:1.0\nCamera.type: \"KannalaBrandt8\"\nCamera1.fx: 1\nCamera1.fy: 1\n"
+            "Camera1.cx: 1\nCamera1.cy: 1\n");
+  ExpectInputError([&] { ReadCameraFile((tmp.path() / "fisheye.yaml").string()); },
+                   {"fisheye.yaml:2:14", "only PinHole"});
+  WriteText(tmp.path() / "half.yaml", "%YAML:1.0\nCamera.fx: 500\nCamera.fy: 500\nCamera.cx: 320\n");
+  ExpectInputError([&] { ReadCameraFile((tmp.path() / "half.yaml").string()); }, {"half.yaml", "Camera.cy"});
+  WriteText(tmp.path() / "neg.yaml", "%YAML:1.0\nCamera.fx: -5\nCamera.fy: 500\nCamera.cx: 320\nCamera.cy: 240\n");
+  ExpectInputError([&] { ReadCameraFile((tmp.path() / "neg.yaml").string()); }, {"neg.yaml:2:12", "Camera.fx"});
+  WriteText(tmp.path() / "viqu.yaml", "fx: 500\nfy: 501\ncx: 320\ncy: 240\nwidth: 640\nheight: 480\n");
+  EXPECT_EQ(ReadCameraFile((tmp.path() / "viqu.yaml").string()).calibration.pinhole.fy, 501.0);
+  ExpectInputError([&] { ReadCameraFile((tmp.path() / "missing.yaml").string()); }, {"missing.yaml", "not found"});
+  // Only TUM-format folders take --camera.
+  ExpectInputError([&] { OpenDataset(seq.string(), DatasetFormat::kEuroc, "", (tmp.path() / "viqu.yaml").string()); },
+                   {"--camera applies to TUM-format folders"});
 }
 
 }  // namespace

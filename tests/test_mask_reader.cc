@@ -163,7 +163,7 @@ TEST(InstanceMaskFolder, ACorruptMaskNamesTheFile) {
   const InstanceMaskFolder masks(dir.string());
   const std::string truncated = (dir / "t.png").string();
   WriteText(truncated, "\x89PNG\r\n\x1a\n truncated");
-  ExpectInputError([&] { masks.Read("t.png", kSize); }, {truncated, "cannot decode"});
+  ExpectInputError([&] { masks.Read("t.png", kSize); }, {truncated, "corrupt PNG (truncated"});
   const std::string empty = (dir / "e.png").string();
   WriteText(empty, "");
   ExpectInputError([&] { masks.Read("e.png", kSize); }, {empty, "cannot decode"});

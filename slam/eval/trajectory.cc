@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -9,7 +10,19 @@
 
 namespace viqu::eval {
 
+namespace {
+
+// Bounds on what a trajectory line may hold. Stamps become int64 nanoseconds, which end at
+// 9.22e9 s. Positions of a robot's trajectory stay far inside 1e6 m (1000 km); squares of values
+// near 1e154 overflow a double, so far larger ones would give an infinite error.
+constexpr long double kMaxStampS = 9.2e9L;
+constexpr double kMaxPositionM = 1e6;
+
+}  // namespace
+
 Trajectory ReadTumTrajectory(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a trajectory file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read trajectory file");
   Trajectory out;
@@ -31,6 +44,14 @@ Trajectory ReadTumTrajectory(const std::string& path) {
     bool finite = std::isfinite(static_cast<double>(t));
     for (double x : v) finite = finite && std::isfinite(x);
     if (!finite) throw InputError(path + ":" + std::to_string(line_no) + ": value is not a finite number");
+    if (std::fabs(t) > kMaxStampS) {
+      throw InputError(path + ":" + std::to_string(line_no) + ": timestamp outside +-9.2e9 s");
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (std::fabs(v[k]) > kMaxPositionM) {
+        throw InputError(path + ":" + std::to_string(line_no) + ": position outside +-1e6 m");
+      }
+    }
     StampedPose p;
     p.t_ns = std::llround(t * 1e9L);
     p.p_w_x = Eigen::Vector3d(v[0], v[1], v[2]);
@@ -41,6 +62,9 @@ Trajectory ReadTumTrajectory(const std::string& path) {
     p.q_w_x = q.normalized();
     if (!out.empty() && p.t_ns < out.back().t_ns) {
       throw InputError(path + ":" + std::to_string(line_no) + ": timestamp goes backwards");
+    }
+    if (!out.empty() && p.t_ns == out.back().t_ns) {
+      throw InputError(path + ":" + std::to_string(line_no) + ": timestamp repeats the previous pose's");
     }
     out.push_back(p);
   }

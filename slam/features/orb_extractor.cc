@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -11,7 +12,7 @@ namespace {
 
 constexpr int kPatchSize = 31;       // BRIEF patch (px)
 constexpr int kHalfPatch = 15;
-constexpr int kEdge = 19;            // no corners this close to a level's border (px)
+constexpr int kEdge = kOrbEdgePx;
 
 // Orientation of a corner from the intensity centroid of the circular patch around it (deg).
 float CentroidAngle(const cv::Mat& img, cv::Point2f pt, const std::vector<int>& umax) {
@@ -31,6 +32,22 @@ float CentroidAngle(const cv::Mat& img, cv::Point2f pt, const std::vector<int>& 
 }
 
 }  // namespace
+
+std::string PyramidProblem(double scale_factor, int num_levels, int width, int height) {
+  const double coarsest = std::pow(scale_factor, num_levels - 1);
+  const int w = cvRound(width / coarsest), h = cvRound(height / coarsest);
+  // FAST's 7x7 circle: a smaller level has no pixel to test (OpenCV asserts on an empty one).
+  // Levels smaller than 2 * kEdge + 1 are allowed: they find nothing inside the border, as the
+  // coarse levels of small images do.
+  constexpr int min_side = 7;
+  if (std::min(w, h) >= min_side) return "";
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "orb.num_levels %d at orb.scale_factor %g shrinks the %dx%d image to %dx%d px at the coarsest level, "
+                "below the %d px a corner test needs; use fewer levels or a smaller scale factor",
+                num_levels, scale_factor, width, height, w, h, min_side);
+  return buf;
+}
 
 OrbExtractor::OrbExtractor(const OrbExtractorOptions& opt)
     : opt_(opt),

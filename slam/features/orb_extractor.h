@@ -4,6 +4,7 @@
 // again at a lower one), cells served round-robin by corner response until each level's quota is
 // met, intensity-centroid orientation, and rotated BRIEF descriptors. OpenCV's plain ORB keeps
 // the strongest corners of the whole image, which cluster on a few textured patches.
+#include <string>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -23,6 +24,13 @@ struct OrbExtractorOptions {
   int fast_threshold_min = 7;  // retry threshold for cells that found nothing
   int cell_px = 32;            // grid cell size at each level (px)
 };
+
+// No corners this close to a level's border (px): the rotated BRIEF patch must fit.
+inline constexpr int kOrbEdgePx = 19;
+
+// Why a width x height image cannot go through a pyramid of `num_levels` levels at
+// `scale_factor` (its coarsest level is smaller than a FAST corner test), or "" when it can. Checked before a run starts: OpenCV asserts on an empty level.
+std::string PyramidProblem(double scale_factor, int num_levels, int width, int height);
 
 class OrbExtractor {
  public:

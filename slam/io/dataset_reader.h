@@ -3,6 +3,7 @@
 // `viqu slam DIR --format viqu|euroc|tum` opens one through OpenDataset (open_dataset.h).
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "slam/measurements/ground_truth_pose.h"
@@ -33,6 +34,9 @@ class DatasetReader {
   // Ground truth of the left camera's (rectified) optical frame in the world, TUM-like: its own
   // stamps, which need not match the frames'; nullopt when the dataset has none.
   virtual const std::optional<std::vector<StampedPose>>& ground_truth() const = 0;
+  // Where the camera calibration came from (a file, or a published calibration), for the
+  // record: printed and written to metrics.json.
+  virtual const std::string& calibration_source() const = 0;
 };
 
 }  // namespace viqu::io

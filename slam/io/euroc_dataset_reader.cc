@@ -18,6 +18,7 @@ EurocDatasetReader::EurocDatasetReader(const std::string& dir, const std::string
   const EurocStereoLayout layout = ReadEurocStereoLayout(FindMav0(dir));
   frames_ = layout.frames;
   raw_ = layout.cam0.calibration.pinhole;
+  calibration_source_ = (fs::path(layout.mav0) / "cam0" / "sensor.yaml").string() + " and cam1/sensor.yaml";
   const Eigen::Isometry3d T_cam0_cam1 = layout.cam0.T_B_S.inverse() * layout.cam1.T_B_S;
   rectifier_ = std::make_unique<StereoRectifier>(layout.cam0.calibration, layout.cam1.calibration, T_cam0_cam1,
                                                  (fs::path(layout.mav0) / "cam1" / "sensor.yaml").string());

@@ -38,10 +38,12 @@ class EurocDatasetReader : public DatasetReader {
   bool HasDepth() const override { return false; }
   bool HasSegmentation() const override { return masks_.has_value(); }
   const std::optional<std::vector<StampedPose>>& ground_truth() const override { return ground_truth_; }
+  const std::string& calibration_source() const override { return calibration_source_; }
 
  private:
   std::vector<ImagePair> frames_;               // cam0 (a) / cam1 (b) image files
   size_t next_ = 0;                             // index of the next frame
+  std::string calibration_source_;              // cam0 and cam1 sensor.yaml
   PinholeIntrinsics raw_;                       // calibrated (raw) image size, for checks
   std::unique_ptr<StereoRectifier> rectifier_;
   std::optional<InstanceMaskFolder> masks_;     // --masks

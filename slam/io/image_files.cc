@@ -1,13 +1,19 @@
 #include "slam/io/image_files.h"
 
 #include <filesystem>
+#include <fstream>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "slam/io/png_check.h"
+
 namespace viqu::io {
 namespace {
+
+// The largest image file read (bytes): a 4K 16-bit RGB frame is 50 MB uncompressed.
+constexpr uintmax_t kMaxImageFileBytes = uintmax_t{256} << 20;
 
 cv::Mat Decode(const std::string& path, std::string* why) {
   std::error_code ec;
@@ -15,9 +21,28 @@ cv::Mat Decode(const std::string& path, std::string* why) {
     *why = path + ": image file not found";
     return {};
   }
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxImageFileBytes) {
+    *why = path + ": image file larger than 256 MiB or unreadable";
+    return {};
+  }
+  std::string bytes(static_cast<size_t>(size), '\0');
+  std::ifstream in(path, std::ios::binary);
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
+    *why = path + ": cannot read the image file";
+    return {};
+  }
+  // PNG damage is found before libpng sees it, which would print its own error first.
+  if (LooksLikePng(bytes)) {
+    const std::string problem = PngStructureProblem(bytes);
+    if (!problem.empty()) {
+      *why = path + ": corrupt PNG (" + problem + ")";
+      return {};
+    }
+  }
   cv::Mat image;
   try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, bytes.data()), cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception&) {
     image.release();
   }

@@ -25,14 +25,18 @@ const char* DatasetFormatName(DatasetFormat format) {
 }
 
 std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format,
-                                           const std::string& masks_dir) {
+                                           const std::string& masks_dir, const std::string& camera_file) {
   // A dataset recorded by a run that did not finish, or a run folder without its completion
   // marker, is refused before anything is read.
   RequireNotInIncompleteRun(dir);
+  if (!camera_file.empty() && format != DatasetFormat::kTum) {
+    throw InputError(camera_file + ": --camera applies to TUM-format folders; " + std::string(DatasetFormatName(format)) +
+                     " recordings carry their calibration in mav0/cam0/sensor.yaml and cam1/sensor.yaml");
+  }
   switch (format) {
     case DatasetFormat::kViqu: return std::make_unique<ViquDatasetReader>(dir, masks_dir);
     case DatasetFormat::kEuroc: return std::make_unique<EurocDatasetReader>(dir, masks_dir);
-    case DatasetFormat::kTum: return std::make_unique<TumDatasetReader>(dir, masks_dir);
+    case DatasetFormat::kTum: return std::make_unique<TumDatasetReader>(dir, masks_dir, camera_file);
   }
   throw InputError("unknown dataset format");
 }

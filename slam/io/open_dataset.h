@@ -19,7 +19,9 @@ const char* DatasetFormatName(DatasetFormat format);
 // Opens the dataset in `dir`; with `masks_dir` (not "") its frames carry the instance masks of
 // that folder (InstanceMaskFolder, docs/MASKS.md), which replace a viqu recording's seg0.
 // Missing or malformed input: InputError naming the file.
+// `camera_file` (not ""): the calibration of a TUM-format folder (ReadCameraFile); other formats
+// carry theirs in sensor.yaml and refuse one (InputError).
 std::unique_ptr<DatasetReader> OpenDataset(const std::string& dir, DatasetFormat format,
-                                           const std::string& masks_dir = "");
+                                           const std::string& masks_dir = "", const std::string& camera_file = "");
 
 }  // namespace viqu::io

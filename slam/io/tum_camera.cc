@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
-#include "common/yaml_map_reader.h"
-#include "common/yaml_strict.h"
+#include "common/errors.h"
+#include "slam/io/camera_file.h"
 
 namespace viqu::io {
 namespace {
@@ -41,35 +41,13 @@ TumCamera Freiburg(int which) {
   return c;
 }
 
-TumCamera ReadYaml(const std::string& path) {
-  const YamlSource src(path);
-  YamlMapReader top(src, LoadYamlFile(path), "");
-  TumCamera c;
-  c.source = path;
-  PinholeIntrinsics& k = c.calibration.pinhole;
-  for (const char* key : {"fx", "fy", "cx", "cy", "width", "height"}) top.Require(key);
-  top.Number("fx", &k.fx, NumberRange::Positive());
-  top.Number("fy", &k.fy, NumberRange::Positive());
-  top.Number("cx", &k.cx);
-  top.Number("cy", &k.cy);
-  top.Integer("width", &k.width, NumberRange::Closed(1, 100000));
-  top.Integer("height", &k.height, NumberRange::Closed(1, 100000));
-  top.Number("depth_scale", &c.depth_scale, NumberRange::Positive());
-  top.NumberList("distortion", &c.calibration.distortion, 0, NumberRange::Any(), 4);
-  if (c.calibration.distortion.size() > 5) {
-    src.Fail("distortion", top.Get("distortion"), "expected 4 or 5 coefficients [k1, k2, p1, p2(, k3)]");
-  }
-  top.RejectUnknownKeys();
-  return c;
-}
-
 }  // namespace
 
 TumCamera ReadTumCamera(const std::string& dir) {
   std::error_code ec;
   for (const char* name : {"viqu_intrinsics.yaml", "camera.yaml"}) {
     const fs::path p = fs::path(dir) / name;
-    if (fs::exists(p, ec)) return ReadYaml(p.string());
+    if (fs::exists(p, ec)) return ReadCameraFile(p.string());
   }
   fs::path d = fs::absolute(dir, ec).lexically_normal();
   if (d.filename().empty()) d = d.parent_path();
@@ -81,9 +59,10 @@ TumCamera ReadTumCamera(const std::string& dir) {
       return c;
     }
   }
-  TumCamera c = Freiburg(3);
-  c.source = "TUM freiburg3 calibration (default: no camera.yaml, no freiburgN in the folder name)";
-  return c;
+  // No silent guess: a sequence of another camera tracked with a freiburg calibration gives
+  // wrong figures with exit 0.
+  throw InputError(dir + ": no camera calibration: the folder has no camera.yaml and its name says no freiburg1, "
+                   "freiburg2 or freiburg3; pass --camera FILE (viqu's camera.yaml or an ORB-SLAM2/ORB-SLAM3 settings file)");
 }
 
 }  // namespace viqu::io

@@ -13,12 +13,11 @@ struct TumCamera {
 };
 
 // The camera of the sequence in `dir`:
-// 1. `viqu_intrinsics.yaml`, else `camera.yaml` in `dir` (written by sim/tum_recorder): keys
-//    fx, fy, cx, cy, width, height (required), depth_scale (default 5000) and distortion
-//    [k1, k2, p1, p2(, k3)] (default none); any other key is an error (FILE:LINE:COL);
+// 1. `viqu_intrinsics.yaml`, else `camera.yaml` in `dir` (written by sim/tum_recorder; any
+//    format ReadCameraFile reads, camera_file.h);
 // 2. else TUM's published calibration of the sensor named in the folder name ("freiburg1",
 //    "freiburg2", "freiburg3"; 640x480, with the distortion of freiburg1/2);
-// 3. else the freiburg3 values (fx 535.4, fy 539.2, cx 320.1, cy 247.6, no distortion).
+// 3. else InputError naming the folder and --camera: no calibration is guessed.
 TumCamera ReadTumCamera(const std::string& dir);
 
 }  // namespace viqu::io

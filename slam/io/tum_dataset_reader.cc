@@ -5,6 +5,7 @@
 
 #include "common/errors.h"
 #include "slam/eval/trajectory.h"
+#include "slam/io/camera_file.h"
 #include "slam/io/image_files.h"
 #include "slam/io/segment_instances.h"
 
@@ -12,13 +13,10 @@ namespace viqu::io {
 
 namespace fs = std::filesystem;
 
-TumDatasetReader::TumDatasetReader(const std::string& dir, const std::string& masks_dir) {
+TumDatasetReader::TumDatasetReader(const std::string& dir, const std::string& masks_dir, const std::string& camera_file) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir + ": dataset folder not found");
   const fs::path d(dir);
-  camera_ = ReadTumCamera(dir);
-  if (!HasNoDistortion(camera_.calibration)) undistorter_ = std::make_unique<ImageUndistorter>(camera_.calibration);
-
   const std::string rgb_txt = (d / "rgb.txt").string(), depth_txt = (d / "depth.txt").string();
   const std::vector<ImageEntry> rgb = ReadTumImageList(rgb_txt, dir);
   const std::vector<ImageEntry> depth = ReadTumImageList(depth_txt, dir);
@@ -28,6 +26,17 @@ TumDatasetReader::TumDatasetReader(const std::string& dir, const std::string& ma
   if (frames_.empty()) {
     throw InputError(rgb_txt + ": no colour image has a depth image in " + depth_txt + " within 0.02 s");
   }
+  // The calibration after the lists: a folder that is no TUM sequence says so first.
+  camera_ = camera_file.empty() ? ReadTumCamera(dir) : ReadCameraFile(camera_file);
+  PinholeIntrinsics& k = camera_.calibration.pinhole;
+  if (k.width == 0) {  // a calibration without the image size (older ORB-SLAM2 files): the first image's
+    std::string why;
+    const cv::Mat first = ReadImage8(frames_.front().a, &why);
+    if (first.empty()) throw InputError(why);
+    k.width = first.cols;
+    k.height = first.rows;
+  }
+  if (!HasNoDistortion(camera_.calibration)) undistorter_ = std::make_unique<ImageUndistorter>(camera_.calibration);
   if (!masks_dir.empty()) masks_.emplace(masks_dir);
   const fs::path gt = d / "groundtruth.txt";
   if (fs::exists(gt, ec)) ground_truth_ = eval::ReadTumTrajectory(gt.string());

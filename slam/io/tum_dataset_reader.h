@@ -28,7 +28,8 @@ constexpr double kTumMaxRgbDepthDiffS = 0.02;
 class TumDatasetReader : public DatasetReader {
  public:
   // `masks_dir`: instance masks, "" for none. Bad input: InputError naming the file.
-  explicit TumDatasetReader(const std::string& dir, const std::string& masks_dir = "");
+  // `camera_file`: a calibration (ReadCameraFile) instead of the folder's own; "" for that.
+  explicit TumDatasetReader(const std::string& dir, const std::string& masks_dir = "", const std::string& camera_file = "");
 
   bool Next(StereoFrame* frame) override;
   size_t NumFrames() const override { return frames_.size(); }
@@ -38,8 +39,9 @@ class TumDatasetReader : public DatasetReader {
   bool HasSegmentation() const override { return masks_.has_value(); }
   const std::optional<std::vector<StampedPose>>& ground_truth() const override { return ground_truth_; }
 
-  // Where the intrinsics came from (camera.yaml, or which TUM default).
+  // Where the intrinsics came from (--camera, camera.yaml, or which TUM calibration).
   const std::string& camera_source() const { return camera_.source; }
+  const std::string& calibration_source() const override { return camera_.source; }
 
  private:
   // Reads one frame; false (with *why) when an image cannot be read.

@@ -59,6 +59,7 @@ ViquDatasetReader::ViquDatasetReader(const std::string& dir, const std::string& 
   }
   const EurocStereoLayout layout = ReadEurocStereoLayout((dataset / "mav0").string());
   const fs::path mav0(layout.mav0);
+  calibration_source_ = (mav0 / "cam0" / "sensor.yaml").string() + " and cam1/sensor.yaml";
   frames_ = layout.frames;
 
   // The recorder writes rectified images: equal pinhole intrinsics, no distortion, cam1 at +x.

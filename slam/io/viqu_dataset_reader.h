@@ -39,6 +39,7 @@ class ViquDatasetReader : public DatasetReader {
   bool HasDepth() const override { return has_depth_; }
   bool HasSegmentation() const override { return has_segmentation_; }
   const std::optional<std::vector<StampedPose>>& ground_truth() const override { return ground_truth_; }
+  const std::string& calibration_source() const override { return calibration_source_; }
 
  private:
   // Reads the images of one frame; false (with *why) when one cannot be read.
@@ -47,6 +48,7 @@ class ViquDatasetReader : public DatasetReader {
   std::vector<ImagePair> frames_;               // cam0 (a) / cam1 (b) image files
   size_t next_ = 0;                             // index of the next frame
   PinholeIntrinsics intrinsics_;
+  std::string calibration_source_;              // cam0 and cam1 sensor.yaml
   double baseline_m_ = 0;
   bool has_depth_ = false, has_segmentation_ = false;
   std::map<int64_t, std::string> depth_files_;  // stamp (ns) -> depth0 image

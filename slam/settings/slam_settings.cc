@@ -177,6 +177,10 @@ SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::st
   top.Number("rgbd_virtual_baseline_m", &s.rgbd_virtual_baseline_m, NumberRange::OpenClosed(0, 10));
   YamlMapReader orb = top.Map("orb");
   ReadOrb(&orb, &s.orb);
+  {
+    const char* key = orb.Has("num_levels") || !orb.Has("scale_factor") ? "num_levels" : "scale_factor";
+    s.pyramid_where = orb.Has(key) ? src.Where(orb.KeyPath(key), orb.Get(key)) : path;
+  }
   YamlMapReader stereo = top.Map("stereo");
   ReadStereo(&stereo, &s.stereo);
   YamlMapReader tracking = top.Map("tracking");

@@ -108,6 +108,8 @@ struct LegOdometrySettings {
 
 struct SlamSettings {
   std::string source_file;           // the YAML the settings came from ("" = built-in defaults)
+  std::string pyramid_where;         // where orb.num_levels / scale_factor were set (FILE:LINE:COL or
+                                     // --set), for the check against the image size (PyramidProblem)
   std::string mode = "full";         // visual | visual_dynamic (plus dynamic objects) | full (plus leg odometry)
   std::string input = "stereo";      // stereo | rgbd (depth from left_depth_m)
   double rgbd_max_depth_m = 6;       // rgbd: depth beyond this is ignored (m)

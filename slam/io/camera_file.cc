@@ -1,0 +1,103 @@
+#include "slam/io/camera_file.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/errors.h"
+#include "common/yaml_map_reader.h"
+#include "common/yaml_strict.h"
+
+namespace viqu::io {
+namespace {
+
+// The largest calibration file read (bytes); ORB-SLAM settings files are a few KiB.
+constexpr std::streamsize kMaxCameraFileBytes = 1 << 20;
+
+std::string ReadText(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": camera file not found (or not a file)");
+  std::ifstream in(path, std::ios::binary);
+  std::string text(static_cast<size_t>(kMaxCameraFileBytes) + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) throw InputError(path + ": read error");
+  text.resize(static_cast<size_t>(in.gcount()));
+  if (text.size() > static_cast<size_t>(kMaxCameraFileBytes)) throw InputError(path + ": larger than 1 MiB; not a camera file");
+  return text;
+}
+
+TumCamera ReadViqu(const YamlSource& src, const YAML::Node& root, const std::string& path) {
+  YamlMapReader top(src, root, "");
+  TumCamera c;
+  c.source = path;
+  PinholeIntrinsics& k = c.calibration.pinhole;
+  for (const char* key : {"fx", "fy", "cx", "cy", "width", "height"}) top.Require(key);
+  top.Number("fx", &k.fx, NumberRange::Positive());
+  top.Number("fy", &k.fy, NumberRange::Positive());
+  top.Number("cx", &k.cx);
+  top.Number("cy", &k.cy);
+  top.Integer("width", &k.width, NumberRange::Closed(1, 100000));
+  top.Integer("height", &k.height, NumberRange::Closed(1, 100000));
+  top.Number("depth_scale", &c.depth_scale, NumberRange::Positive());
+  top.NumberList("distortion", &c.calibration.distortion, 0, NumberRange::Any(), 4);
+  if (c.calibration.distortion.size() > 5) {
+    src.Fail("distortion", top.Get("distortion"), "expected 4 or 5 coefficients [k1, k2, p1, p2(, k3)]");
+  }
+  top.RejectUnknownKeys();
+  return c;
+}
+
+// ORB-SLAM2 (`prefix` "Camera.") or ORB-SLAM3 (`prefix` "Camera1.") settings.
+TumCamera ReadOrbSlam(const YamlSource& src, const YAML::Node& root, const std::string& path, const std::string& prefix) {
+  YamlMapReader top(src, root, "");
+  TumCamera c;
+  PinholeIntrinsics& k = c.calibration.pinhole;
+  if (top.Has("Camera.type")) {
+    std::string type;
+    top.String("Camera.type", &type);
+    if (type != "PinHole") {
+      src.Fail("Camera.type", top.Get("Camera.type"), "camera type '" + type + "': only PinHole calibrations are read");
+    }
+  }
+  for (const char* key : {"fx", "fy", "cx", "cy"}) top.Require(prefix + key);
+  top.Number(prefix + "fx", &k.fx, NumberRange::Positive());
+  top.Number(prefix + "fy", &k.fy, NumberRange::Positive());
+  top.Number(prefix + "cx", &k.cx);
+  top.Number(prefix + "cy", &k.cy);
+  k.width = k.height = 0;  // the images' size unless given
+  top.Integer("Camera.width", &k.width, NumberRange::Closed(1, 100000));
+  top.Integer("Camera.height", &k.height, NumberRange::Closed(1, 100000));
+  if ((k.width == 0) != (k.height == 0)) {
+    src.Fail(k.width == 0 ? "Camera.height" : "Camera.width", top.Get(k.width == 0 ? "Camera.height" : "Camera.width"),
+             "Camera.width and Camera.height go together");
+  }
+  std::vector<double> d(5, 0.0);
+  bool any = false;
+  const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
+  for (int i = 0; i < 5; ++i) any = top.Number(prefix + names[i], &d[i]) || any;
+  if (any) c.calibration.distortion = d;
+  for (const char* key : {"DepthMapFactor", "RGBD.DepthMapFactor"}) top.Number(key, &c.depth_scale, NumberRange::Positive());
+  c.source = path + " (ORB-SLAM" + (prefix == "Camera1." ? "3" : "2") + " settings)";
+  return c;
+}
+
+}  // namespace
+
+TumCamera ReadCameraFile(const std::string& path) {
+  std::string text = ReadText(path);
+  // OpenCV's FileStorage writes "%YAML:1.0", which is no YAML directive: blank it (as a comment,
+  // so that line numbers stay right).
+  const bool opencv_header = text.compare(0, 6, "%YAML:") == 0;
+  if (opencv_header) text[0] = '#';
+  const YAML::Node root = LoadYamlText(text, path);
+  const YamlSource src(path);
+  if (!root.IsMap()) throw InputError(path + ": expected a map of calibration keys");
+  if (root["Camera1.fx"]) return ReadOrbSlam(src, root, path, "Camera1.");
+  if (root["Camera.fx"]) return ReadOrbSlam(src, root, path, "Camera.");
+  if (opencv_header) {
+    throw InputError(path + ": an OpenCV/ORB-SLAM settings file without Camera.fx or Camera1.fx (no pinhole calibration)");
+  }
+  return ReadViqu(src, root, path);
+}
+
+}  // namespace viqu::io
