@@ -89,6 +89,15 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(ta.keyframe_ratio, tb.keyframe_ratio);
   EXPECT_EQ(ta.close_points_min, tb.close_points_min);
   EXPECT_EQ(ta.relocalise_min_inliers, tb.relocalise_min_inliers);
+  EXPECT_EQ(ta.close_tracked_max, tb.close_tracked_max);
+  EXPECT_EQ(ta.relocalise_ransac_min_inliers, tb.relocalise_ransac_min_inliers);
+  EXPECT_EQ(ta.init_min_points, tb.init_min_points);
+  EXPECT_EQ(ta.keyframe_new_points, tb.keyframe_new_points);
+  EXPECT_EQ(ta.keyframe_min_inliers, tb.keyframe_min_inliers);
+  EXPECT_EQ(ta.reinitialise_after_lost, tb.reinitialise_after_lost);
+  EXPECT_EQ(ta.weak_inliers_factor, tb.weak_inliers_factor);
+  EXPECT_EQ(ta.relocalised_frames, tb.relocalised_frames);
+  EXPECT_EQ(ta.relocalised_min_inliers, tb.relocalised_min_inliers);
 
   const MappingSettings& ma = a.mapping;
   const MappingSettings& mb = b.mapping;
@@ -146,7 +155,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 14 + 9 + 8 + 3 + 12 + 16;
+constexpr int kLeafKeys = 4 + 6 + 10 + 23 + 9 + 8 + 3 + 12 + 16;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -250,7 +259,7 @@ TEST_F(SlamSettingsTest, UnknownKeyNamesFileLineAndColumn) {
   EXPECT_EQ(msg.rfind(Path() + ":4:3: unknown key 'tracking.min_inlier' (expected one of: motion_search_px, ", 0),
             0u)
       << msg;
-  EXPECT_NE(msg.find("relocalise_min_inliers)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("relocalised_min_inliers)"), std::string::npos) << msg;  // the list ends with the last key
 }
 
 TEST_F(SlamSettingsTest, UnknownKeysAtTopLevelAndInEverySection) {

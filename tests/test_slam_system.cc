@@ -122,6 +122,101 @@ TEST(SlamSystem, TracksASyntheticWallSequenceToTheKnownPath) {
   EXPECT_EQ(system.Stats().lost_frames, 0);
 }
 
+// Frame k with its images blacked out: a camera outage (the true camera keeps moving).
+StereoFrame BlackFrame(int k) {
+  StereoFrame f = MakeFrame(k);
+  f.left_rgb.setTo(cv::Scalar::all(0));
+  f.right_rgb.setTo(cv::Scalar::all(0));
+  return f;
+}
+
+double PositionError(const slam::TrackResult& r, int k) {
+  return (r.T_w_c.translation() - TruePose(k).translation()).norm();
+}
+
+// A forced loss shorter than the re-initialisation limit (20 frames): the frames of the outage
+// are lost, the first frame after it relocalises against the map, and tracking goes on at the
+// accuracy of an uninterrupted run. A wrong motion prior during the outage drags the
+// dead-reckoned pose 0.3 m a frame away from the truth: relocalisation must not depend on it.
+TEST(SlamSystem, ForcedLossRelocalisesAgainstTheMap) {
+  slam::SlamSystem system(slam::SlamSettings{});
+  for (int k = 0; k < 25; ++k) ASSERT_NE(system.Track(MakeFrame(k)).status, slam::TrackStatus::kLost) << k;
+  Eigen::Isometry3d drag = Eigen::Isometry3d::Identity();
+  drag.translation() = Eigen::Vector3d(0.3, 0, 0);
+  for (int k = 25; k < 33; ++k) {
+    system.SetMotionPrior(drag);
+    const slam::TrackResult r = system.Track(BlackFrame(k));
+    EXPECT_EQ(r.status, slam::TrackStatus::kLost) << k;
+  }
+  const slam::TrackResult back = system.Track(MakeFrame(33));
+  EXPECT_EQ(back.status, slam::TrackStatus::kRelocalised);
+  EXPECT_LT(PositionError(back, 33), 0.003);
+  double worst_m = 0;
+  for (int k = 34; k < kFrames; ++k) {
+    const slam::TrackResult r = system.Track(MakeFrame(k));
+    ASSERT_EQ(r.status, slam::TrackStatus::kTracking) << k;
+    worst_m = std::max(worst_m, PositionError(r, k));
+  }
+  system.Finish();
+  std::printf("relocalised at frame 33 with %.2f mm error (dead reckoning was %.0f m off); worst after: %.2f mm\n",
+              PositionError(back, 33) * 1e3, 8 * 0.3, worst_m * 1e3);
+  EXPECT_LT(worst_m, 0.003);  // the uninterrupted run's bound
+  EXPECT_EQ(system.Stats().lost_frames, 8);
+  EXPECT_EQ(system.Stats().relocalisations, 1);
+}
+
+// A forced loss longer than the limit: a new map segment starts from the dead-reckoned pose
+// with its own fixed (gauge) keyframe; within the segment the motion is right.
+TEST(SlamSystem, ForcedLongLossStartsANewAnchoredSegment) {
+  slam::SlamSystem system(slam::SlamSettings{});
+  for (int k = 0; k < 15; ++k) ASSERT_NE(system.Track(MakeFrame(k)).status, slam::TrackStatus::kLost) << k;
+  for (int k = 15; k < 37; ++k) EXPECT_EQ(system.Track(BlackFrame(k)).status, slam::TrackStatus::kLost) << k;
+  const slam::TrackResult start = system.Track(MakeFrame(37));
+  ASSERT_EQ(start.status, slam::TrackStatus::kInitialised);
+  // Relative motion within the new segment against the truth's.
+  const Eigen::Isometry3d truth_start = TruePose(37);
+  double worst_m = 0;
+  for (int k = 38; k < kFrames; ++k) {
+    const slam::TrackResult r = system.Track(MakeFrame(k));
+    ASSERT_EQ(r.status, slam::TrackStatus::kTracking) << k;
+    const Eigen::Vector3d est = (start.T_w_c.inverse() * r.T_w_c).translation();
+    const Eigen::Vector3d truth = (truth_start.inverse() * TruePose(k)).translation();
+    worst_m = std::max(worst_m, (est - truth).norm());
+  }
+  system.Finish();
+  std::printf("new segment at frame 37: worst relative position error %.2f mm over %d frames\n", worst_m * 1e3,
+              kFrames - 38);
+  EXPECT_LT(worst_m, 0.003);
+  EXPECT_EQ(system.Stats().lost_frames, 22);
+  // Two fixed keyframes: the first map's and the new segment's, which stays where it was made.
+  int fixed = 0;
+  for (const auto& kf : system.KeyFrames()) {
+    if (!kf.fixed) continue;
+    ++fixed;
+    if (kf.t_ns == start.t_ns) {
+      EXPECT_TRUE(kf.T_w_c.isApprox(start.T_w_c, 1e-12));
+    }
+  }
+  EXPECT_EQ(fixed, 2);
+}
+
+// Relocalisation's RANSAC does not depend on OpenCV's global generator: the same frames give
+// the same poses whatever state cv::theRNG() is in.
+TEST(SlamSystem, RelocalisationIsDeterministic) {
+  auto run = [](uint64_t global_seed) {
+    cv::theRNG().state = global_seed;
+    slam::SlamSystem system(slam::SlamSettings{});
+    for (int k = 0; k < 12; ++k) system.Track(MakeFrame(k));
+    for (int k = 12; k < 15; ++k) system.Track(BlackFrame(k));
+    cv::theRNG().state = global_seed * 7 + 1;
+    return system.Track(MakeFrame(15));
+  };
+  const slam::TrackResult a = run(1), b = run(987654321);
+  EXPECT_EQ(a.status, slam::TrackStatus::kRelocalised);
+  EXPECT_EQ(a.inliers, b.inliers);
+  EXPECT_TRUE(a.T_w_c.matrix() == b.T_w_c.matrix());
+}
+
 TEST(SlamSystem, RefusesFramesOutOfOrderOrIncomplete) {
   slam::SlamSystem system(slam::SlamSettings{});
   system.Track(MakeFrame(0));
@@ -132,6 +227,22 @@ TEST(SlamSystem, RefusesFramesOutOfOrderOrIncomplete) {
   StereoFrame other_camera = MakeFrame(1);
   other_camera.intrinsics.fx = 300;
   EXPECT_THROW(system.Track(other_camera), InputError);
+  // Images of the wrong type or size are refused before anything reads them.
+  StereoFrame deep = MakeFrame(1);
+  deep.left_rgb.convertTo(deep.left_rgb, CV_16U);
+  EXPECT_THROW(system.Track(deep), InputError);
+  StereoFrame rgba = MakeFrame(1);
+  cv::cvtColor(rgba.left_rgb, rgba.left_rgb, cv::COLOR_RGB2RGBA);
+  EXPECT_THROW(system.Track(rgba), InputError);
+  StereoFrame narrow = MakeFrame(1);
+  narrow.right_rgb = narrow.right_rgb.colRange(0, kW - 8).clone();
+  EXPECT_THROW(system.Track(narrow), InputError);
+  StereoFrame depth16 = MakeFrame(1);
+  depth16.left_depth_m = cv::Mat(kH, kW, CV_16U, cv::Scalar(1000));
+  EXPECT_THROW(system.Track(depth16), InputError);
+  StereoFrame small_mask = MakeFrame(1);
+  small_mask.left_instance_id = cv::Mat(kH / 2, kW / 2, CV_16U, cv::Scalar(0));
+  EXPECT_THROW(system.Track(small_mask), InputError);
   EXPECT_NO_THROW(system.Track(MakeFrame(1)));  // the system is still usable
 
   slam::SlamSettings rgbd;

@@ -150,6 +150,8 @@ void LocalMapper::CullRecentPoints(KeyFrame* kf) {
       Map::ErasePoint(p);
       it = recent_.erase(it);
     } else if (age >= 2 && p->ObservationWeight() <= 2) {
+      // ORB-SLAM's recent-point test: two keyframes after its creation a point must be seen by
+      // more than 2 (stereo counts twice) and is no longer watched from the third on.
       Map::ErasePoint(p);
       it = recent_.erase(it);
     } else if (age >= 3) {
@@ -224,7 +226,7 @@ void LocalMapper::FuseWithNeighbours(KeyFrame* kf) {
   seen.insert(kf);
   const size_t first = targets.size();
   for (size_t i = 0; i < first; ++i) {
-    for (KeyFrame* n : targets[i]->BestCovisible(5)) {
+    for (KeyFrame* n : targets[i]->BestCovisible(5)) {  // ORB-SLAM's second ring: 5 neighbours each
       if (seen.insert(n).second) targets.push_back(n);
     }
   }
@@ -257,6 +259,8 @@ void LocalMapper::CullKeyFrames(KeyFrame* kf) {
       MapPoint* p = n->points[i];
       if (!p || p->bad) continue;
       ++good;
+      // ORB-SLAM's redundancy: a point seen by at least 3 other keyframes at the same or a finer
+      // scale (one level of slack).
       if (p->ObservationWeight() <= 3) continue;
       const int level = n->features->keypoints[i].octave;
       int others = 0;

@@ -48,6 +48,8 @@ bool PredictView(const StereoCamera& cam, const MapPoint& p, const Eigen::Isomet
   if (!cam.InImage(v->uv.x(), v->uv.y())) return false;
   const Eigen::Vector3d ray = p.p_w - center;
   const double dist = ray.norm();
+  // ORB-SLAM's view gates: within the scale range the point's pyramid level allows (20% slack)
+  // and within 60 degrees of its mean viewing direction.
   if (dist < 0.8 * p.min_distance || dist > 1.2 * p.max_distance) return false;
   if (ray.dot(p.normal) < 0.5 * dist) return false;
   v->view_cos = ray.dot(p.normal) / dist;
@@ -87,7 +89,7 @@ int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) co
   return matches;
 }
 
-int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radius, Frame* cur) const {
+int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radius, Frame* cur, bool count_visible) const {
   const FrameFeatures& f = *cur->features;
   const Eigen::Vector3d center = cur->Center();
   std::set<const MapPoint*> already;
@@ -99,12 +101,12 @@ int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radi
     if (p->bad || already.count(p)) continue;
     View v;
     if (!PredictView(cam_, *p, cur->T_c_w, center, f, &v)) continue;
-    ++p->visible;
+    if (count_visible) ++p->visible;
     const Eigen::Vector3d& pc = v.p_c;
     const Eigen::Vector2d& uv = v.uv;
     const int level = v.level;
     // Wider windows when the view is oblique.
-    const double r = radius * (v.view_cos > 0.998 ? 1.0 : 1.5) * f.level_scale[level];
+    const double r = radius * (v.view_cos > 0.998 ? 1.0 : 1.5) * f.level_scale[level];  // ORB-SLAM's: beyond 3.6 deg
     const auto cand = f.InArea(uv.x(), uv.y(), r, level - 1, level);
     Best b;
     const double ur = cam_.ProjectRight(pc);
@@ -194,7 +196,7 @@ std::vector<std::pair<int, int>> Matcher::SearchForTriangulation(const KeyFrame&
       // Without stereo depth, a feature next to the epipole could be at any depth.
       if (f1.depth[i] < 0 && f2.depth[j] < 0) {
         const double de = (Eigen::Vector2d(k2.pt.x, k2.pt.y) - ep).norm();
-        if (de < 10 * f2.level_scale[k2.octave]) continue;
+        if (de < 10 * f2.level_scale[k2.octave]) continue;  // ORB-SLAM's 10 px (times the level's scale)
       }
       b.Offer(j, d, k2.octave);
     }

@@ -30,7 +30,9 @@ class Matcher {
 
   // Projects `points` (not yet matched in `cur`) into `cur`; window `radius` times the predicted
   // level's scale. Counts visibility in MapPoint::visible. Returns new matches.
-  int SearchLocalPoints(const std::vector<MapPoint*>& points, double radius, Frame* cur) const;
+  // `count_visible`: add one to `visible` of every point that projects into the frame (once per
+  // tracked frame: a second, wider search of the same frame, or a relocalisation, passes false).
+  int SearchLocalPoints(const std::vector<MapPoint*>& points, double radius, Frame* cur, bool count_visible) const;
 
   // Matches the map points of `kf` to features of `cur` by descriptor alone (no pose needed).
   int SearchByDescriptor(const KeyFrame& kf, Frame* cur) const;

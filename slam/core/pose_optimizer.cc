@@ -71,7 +71,7 @@ int OptimizePose(const StereoCamera& cam, const PoseOptimizerOptions& opt, Frame
       frame->outlier[o.idx] = !IsInlierObservation(cam, f, o.idx, T * o.p_w);
       if (!frame->outlier[o.idx]) ++inliers;
     }
-    if (inliers < 10) break;
+    if (inliers < 10) break;  // ORB-SLAM's stop: below 10 inliers more rounds only chase outliers
   }
   frame->T_c_w = ParamsToPose(q);
   return inliers;

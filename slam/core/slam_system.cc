@@ -51,6 +51,33 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
     throw InputError("frame at t=" + std::to_string(frame.t_ns) + " ns has no " + (rgbd ? "depth image" : "right image") +
                      " (input: " + m.settings.input + ")");
   }
+  // Image types and sizes are checked here: the extractor and the stereo matcher index the
+  // images by the first frame's size and read them as 8-bit grey or RGB and 32-bit depth.
+  const auto describe = [](const cv::Mat& m) {
+    return std::to_string(m.cols) + "x" + std::to_string(m.rows) + " with " + std::to_string(m.channels()) +
+           " channel(s) of " + std::to_string(m.elemSize1() * 8) + " bits";
+  };
+  const std::string at = "frame at t=" + std::to_string(frame.t_ns) + " ns: ";
+  if (frame.left_rgb.type() != CV_8UC3 && frame.left_rgb.type() != CV_8UC1) {
+    throw InputError(at + "the left image must be 8-bit RGB or grey, got " + describe(frame.left_rgb));
+  }
+  const cv::Size size = frame.left_rgb.size();
+  if (size.width != frame.intrinsics.width || size.height != frame.intrinsics.height) {
+    throw InputError(at + "the left image is " + describe(frame.left_rgb) + ", the intrinsics say " +
+                     std::to_string(frame.intrinsics.width) + "x" + std::to_string(frame.intrinsics.height));
+  }
+  if (!frame.right_rgb.empty() && (frame.right_rgb.type() != frame.left_rgb.type() || frame.right_rgb.size() != size)) {
+    throw InputError(at + "the right image (" + describe(frame.right_rgb) + ") differs from the left (" +
+                     describe(frame.left_rgb) + ")");
+  }
+  if (!frame.left_depth_m.empty() && (frame.left_depth_m.type() != CV_32FC1 || frame.left_depth_m.size() != size)) {
+    throw InputError(at + "the depth image must be 32-bit float metres of the left image's size, got " +
+                     describe(frame.left_depth_m));
+  }
+  if (!frame.left_instance_id.empty() && (frame.left_instance_id.type() != CV_16UC1 || frame.left_instance_id.size() != size)) {
+    throw InputError(at + "the instance mask must be 16-bit ids of the left image's size, got " +
+                     describe(frame.left_instance_id));
+  }
   if (!m.tracker.HasCamera()) {
     if (frame.intrinsics.fx <= 0 || frame.intrinsics.width <= 0 || (!rgbd && frame.baseline_m <= 0)) {
       throw InputError("the first frame has no valid intrinsics or baseline");
@@ -120,6 +147,16 @@ SlamStats SlamSystem::Stats() const {
   s.map_points = impl_->map.GoodPoints();
   if (impl_->mapper) s.local_ba_ms = impl_->mapper->ba_ms();
   return s;
+}
+
+std::vector<SlamSystem::KeyFrameInfo> SlamSystem::KeyFrames() const {
+  std::lock_guard<std::mutex> lock(impl_->map.mutex);
+  std::vector<KeyFrameInfo> out;
+  for (const auto& kf : impl_->map.keyframes()) {
+    if (kf->bad) continue;
+    out.push_back({kf->t_ns, impl_->world_from_map * kf->T_c_w.inverse(), kf->fixed});
+  }
+  return out;
 }
 
 const SlamSettings& SlamSystem::settings() const { return impl_->settings; }

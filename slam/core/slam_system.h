@@ -75,6 +75,15 @@ class SlamSystem {
   void Finish();
 
   SlamStats Stats() const;
+
+  // The keyframes in the map now (culled ones left out), in creation order: for tests, reports
+  // and viewers.
+  struct KeyFrameInfo {
+    int64_t t_ns = 0;
+    Eigen::Isometry3d T_w_c = Eigen::Isometry3d::Identity();  // in the output world frame
+    bool fixed = false;  // held constant in bundle adjustment (the first keyframe of each map segment)
+  };
+  std::vector<KeyFrameInfo> KeyFrames() const;
   const SlamSettings& settings() const;
 
  private:

@@ -16,12 +16,23 @@
 namespace viqu::slam {
 namespace {
 
-constexpr int kMinInitPoints = 100;    // stereo points needed to start a map
-constexpr int kMinNewKeyframePoints = 100;  // new keyframe: nearest stereo points made map points
-constexpr int kReinitialiseAfterLost = 20;  // lost frames before a new map segment is started
-constexpr int kWeakInliersFactor = 3;  // fewer inliers than this times tracking.min_inliers: the
-                                       // frame is weakly tracked and searched again more widely
-constexpr int kKeyframeMinInliers = 50;  // a frame with fewer inliers does not become a keyframe
+// Decision constants are tracking.* settings (slam/config/default.yaml). What stays here is
+// ORB-SLAM's (Mur-Artal et al. 2015, 2017) with its reason.
+// Relocalisation: up to 15 most recent keyframes and up to 30 candidates in all; PnP RANSAC with
+// 200 iterations, a 4 px gate and 0.99 confidence; a candidate's neighbourhood is its 10 best
+// covisible keyframes, searched with a 10 px window (the pose is good by then).
+constexpr size_t kRelocRecentKeyframes = 15, kRelocCandidates = 30, kRelocNeighbours = 10;
+constexpr int kRelocRansacIterations = 200;
+constexpr float kRelocRansacPx = 4.0f;
+constexpr double kRelocRansacConfidence = 0.99, kRelocSearchPx = 10.0;
+// Descriptor matches and pose inliers below which a keyframe (as reference or relocalisation
+// candidate) is not worth a pose optimisation: 15 matches, 10 inliers (ORB-SLAM's values; below
+// them a 6-dof pose is not determined reliably).
+constexpr int kMinDescriptorMatches = 15, kMinPoseInliers = 10;
+// ORB-SLAM's keyframe rules: condition c1c (tracked < 25% of the reference's points) and c2's
+// floor of 15 inliers; after a relocalisation no keyframe while the map holds more than 20.
+constexpr double kKeyframeLowShare = 0.25;
+constexpr int kKeyframeMinFloor = 15, kRelocNoKeyframeMapSize = 20;
 
 MatcherOptions TrackerMatcherOptions(const SlamSettings& s) {
   MatcherOptions m;
@@ -178,7 +189,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   ++frame_index_;
   last_t_ns_ = frame.t_ns;
 
-  const bool reinitialise = initialised_ && lost_ && lost_frames_in_row_ >= kReinitialiseAfterLost;
+  const bool reinitialise = initialised_ && lost_ && lost_frames_in_row_ >= settings_.tracking.reinitialise_after_lost;
   if (!initialised_ || reinitialise) {
     // A new map segment continues from the last estimate (dead reckoning through the outage).
     cur_.T_c_w = initialised_ ? (have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w) : Eigen::Isometry3d::Identity();
@@ -208,8 +219,9 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   int inliers = 0;
   if (ok) {
     inliers = TrackLocalMap();
-    const bool recently_relocalised = frame_index_ < last_reloc_frame_ + 20;
-    const int need = recently_relocalised ? std::max(settings_.tracking.min_inliers, 50) : settings_.tracking.min_inliers;
+    const bool recently_relocalised = frame_index_ < last_reloc_frame_ + settings_.tracking.relocalised_frames;
+    const int need = recently_relocalised ? std::max(settings_.tracking.min_inliers, settings_.tracking.relocalised_min_inliers)
+                                          : settings_.tracking.min_inliers;
     ok = inliers >= need;
   }
   r.inliers = inliers;
@@ -221,6 +233,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     }
     lost_ = false;
     lost_frames_in_row_ = 0;
+    last_good_T_c_w_ = cur_.T_c_w;
     DropTemporaryPoints(&cur_);
     if (NeedKeyFrame(inliers, mapper)) {
       KeyFrame* kf = CreateKeyFrame(mapper);
@@ -247,9 +260,12 @@ bool Tracker::Initialise() {
   const FrameFeatures& f = *cur_.features;
   int with_depth = 0;
   for (float d : f.depth) with_depth += d > 0 ? 1 : 0;
-  if (with_depth < kMinInitPoints) return false;
+  if (with_depth < settings_.tracking.init_min_points) return false;
   KeyFrame* kf = map_->AddKeyFrame(cur_);
-  if (!initialised_) kf->fixed = true;
+  // The first keyframe of every map segment (the first map, or a new one after a long loss) is
+  // held fixed in bundle adjustment: it anchors the segment's gauge.
+  kf->fixed = true;
+  last_good_T_c_w_ = cur_.T_c_w;
   const Eigen::Isometry3d T_w_c = cur_.T_c_w.inverse();
   for (size_t i = 0; i < f.size(); ++i) {
     if (f.depth[i] <= 0) continue;
@@ -282,7 +298,7 @@ void Tracker::AddTemporaryPointsToLastFrame() {
   int added = 0;
   for (const auto& [d, i] : by_depth) {
     if (last_.points[i] && !last_.points[i]->bad) {
-      if (d > cam_.close_depth_m && added > kMinNewKeyframePoints) break;
+      if (d > cam_.close_depth_m && added > settings_.tracking.keyframe_new_points) break;
       continue;
     }
     auto p = std::make_unique<MapPoint>(-1, T_w_c * f.Unproject(cam_, i), nullptr);
@@ -291,7 +307,7 @@ void Tracker::AddTemporaryPointsToLastFrame() {
     last_.outlier[i] = false;
     temporary_.push_back(std::move(p));
     ++added;
-    if (d > cam_.close_depth_m && added > kMinNewKeyframePoints) break;
+    if (d > cam_.close_depth_m && added > settings_.tracking.keyframe_new_points) break;
   }
 }
 
@@ -308,7 +324,7 @@ bool Tracker::TrackWithMotionModel() {
   // turns 4 degrees a frame and, on a jolt, 10 (60 px here): the prediction can miss by more
   // than the normal window.
   const double radius = settings_.tracking.motion_search_px;
-  const int good = kWeakInliersFactor * settings_.tracking.min_inliers;
+  const int good = static_cast<int>(settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers);
   const Eigen::Isometry3d predicted = velocity_ * last_.T_c_w;
   const std::pair<Eigen::Isometry3d, double> attempts[] = {
       {predicted, radius}, {predicted, 3 * radius}, {last_.T_c_w, 5 * radius}};
@@ -345,11 +361,11 @@ bool Tracker::TrackReferenceKeyFrame() {
   }
   cur_.ClearMatches();
   const int n = matcher_->SearchByDescriptor(*reference_, &cur_);
-  if (n < 15) return false;
+  if (n < kMinDescriptorMatches) return false;
   cur_.T_c_w = last_.T_c_w;
   const int inliers = OptimizePose(cam_, pose_opt_, &cur_);
   cur_.ForgetOutliers();
-  return inliers >= 10;
+  return inliers >= kMinPoseInliers;
 }
 
 int Tracker::TrackLocalMap() {
@@ -395,13 +411,13 @@ int Tracker::TrackLocalMap() {
   for (size_t i = 0; i < cur_.size(); ++i) {
     if (cur_.points[i] && !cur_.points[i]->bad) ++cur_.points[i]->visible;
   }
-  matcher_->SearchLocalPoints(local_points_, settings_.tracking.local_map_search_px, &cur_);
+  matcher_->SearchLocalPoints(local_points_, settings_.tracking.local_map_search_px, &cur_, true);
   int inliers = OptimizePose(cam_, pose_opt_, &cur_);
-  if (inliers < kWeakInliersFactor * settings_.tracking.min_inliers) {
+  if (inliers < settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers) {
     // Few matches usually mean a poor prediction (a jolt of the trunk): search again from the
     // optimised pose with a window three times as wide.
     cur_.ForgetOutliers();
-    matcher_->SearchLocalPoints(local_points_, 3 * settings_.tracking.local_map_search_px, &cur_);
+    matcher_->SearchLocalPoints(local_points_, 3 * settings_.tracking.local_map_search_px, &cur_, false);
     inliers = OptimizePose(cam_, pose_opt_, &cur_);
   }
   for (size_t i = 0; i < cur_.size(); ++i) {
@@ -412,15 +428,16 @@ int Tracker::TrackLocalMap() {
 }
 
 bool Tracker::Relocalise() {
-  // Candidates: the most recent keyframes and those nearest the last good position.
-  const Eigen::Vector3d last_center = last_.Center();
+  // Candidates: the most recent keyframes and those nearest the last tracked position (not the
+  // pose dead-reckoned since, which drifts with every lost frame).
+  const Eigen::Vector3d last_center = last_good_T_c_w_.inverse().translation();
   std::vector<KeyFrame*> good;
   for (const auto& kf : map_->keyframes()) {
     if (!kf->bad) good.push_back(kf.get());
   }
   std::vector<KeyFrame*> cands;
   std::set<KeyFrame*> chosen;
-  for (auto it = good.rbegin(); it != good.rend() && cands.size() < 15; ++it) {
+  for (auto it = good.rbegin(); it != good.rend() && cands.size() < kRelocRecentKeyframes; ++it) {
     if (chosen.insert(*it).second) cands.push_back(*it);
   }
   std::vector<KeyFrame*> by_distance = good;
@@ -428,13 +445,13 @@ bool Tracker::Relocalise() {
     const double da = (a->Center() - last_center).squaredNorm(), db = (b->Center() - last_center).squaredNorm();
     return da != db ? da < db : a->id < b->id;
   });
-  for (size_t i = 0; i < by_distance.size() && cands.size() < 30; ++i) {
+  for (size_t i = 0; i < by_distance.size() && cands.size() < kRelocCandidates; ++i) {
     if (chosen.insert(by_distance[i]).second) cands.push_back(by_distance[i]);
   }
   for (KeyFrame* kf : cands) {
     cur_.ClearMatches();
     const int n = matcher_->SearchByDescriptor(*kf, &cur_);
-    if (n < 15) continue;
+    if (n < kMinDescriptorMatches) continue;
     std::vector<cv::Point3f> obj;
     std::vector<cv::Point2f> img;
     std::vector<int> idx;
@@ -448,10 +465,11 @@ bool Tracker::Relocalise() {
     const cv::Matx33d K(cam_.fx, 0, cam_.cx, 0, cam_.fy, cam_.cy, 0, 0, 1);
     cv::Mat rvec, tvec;
     std::vector<int> inl;
-    cv::setRNGSeed(static_cast<int>(kf->id) + 1);  // deterministic RANSAC
-    if (!cv::solvePnPRansac(obj, img, K, cv::noArray(), rvec, tvec, false, 200, 4.0f, 0.99, inl,
-                            cv::SOLVEPNP_EPNP) ||
-        static_cast<int>(inl.size()) < 12) {
+    // Deterministic without seeding: OpenCV's RANSAC draws from a generator of its own with a
+    // fixed seed (cv::setRNGSeed does not reach it; test_slam_system checks the determinism).
+    if (!cv::solvePnPRansac(obj, img, K, cv::noArray(), rvec, tvec, false, kRelocRansacIterations, kRelocRansacPx,
+                            kRelocRansacConfidence, inl, cv::SOLVEPNP_EPNP) ||
+        static_cast<int>(inl.size()) < settings_.tracking.relocalise_ransac_min_inliers) {
       continue;
     }
     cv::Mat R;
@@ -468,11 +486,11 @@ bool Tracker::Relocalise() {
     }
     cur_.T_c_w = T;
     int inliers = OptimizePose(cam_, pose_opt_, &cur_);
-    if (inliers < 10) continue;
+    if (inliers < kMinPoseInliers) continue;
     // More matches from the candidate's neighbourhood, then the pose again.
     std::vector<MapPoint*> pts;
     std::set<MapPoint*> seen;
-    std::vector<KeyFrame*> hood = kf->BestCovisible(10);
+    std::vector<KeyFrame*> hood = kf->BestCovisible(kRelocNeighbours);
     hood.push_back(kf);
     for (KeyFrame* h : hood) {
       for (MapPoint* p : h->points) {
@@ -480,7 +498,7 @@ bool Tracker::Relocalise() {
       }
     }
     cur_.ForgetOutliers();
-    matcher_->SearchLocalPoints(pts, 10.0, &cur_);
+    matcher_->SearchLocalPoints(pts, kRelocSearchPx, &cur_, false);
     inliers = OptimizePose(cam_, pose_opt_, &cur_);
     if (inliers >= settings_.tracking.relocalise_min_inliers) {
       reference_ = kf;
@@ -499,8 +517,10 @@ bool Tracker::NeedKeyFrame(int inliers, LocalMapper* mapper) const {
   const int64_t since = frame_index_ - last_keyframe_frame_;
   if (since < settings_.tracking.keyframe_min_frames) return false;
   // A weakly tracked frame would put its doubtful pose into the map.
-  if (inliers < kKeyframeMinInliers) return false;
-  if (frame_index_ < last_reloc_frame_ + 20 && map_->GoodKeyFrames() > 20) return false;
+  if (inliers < settings_.tracking.keyframe_min_inliers) return false;
+  if (frame_index_ < last_reloc_frame_ + settings_.tracking.relocalised_frames && map_->GoodKeyFrames() > kRelocNoKeyframeMapSize) {
+    return false;
+  }
   const int min_obs = map_->GoodKeyFrames() <= 2 ? 2 : 3;
   const int ref_matches = reference_ ? reference_->TrackedPoints(min_obs) : 0;
   const FrameFeatures& f = *cur_.features;
@@ -513,12 +533,12 @@ bool Tracker::NeedKeyFrame(int inliers, LocalMapper* mapper) const {
       ++untracked_close;
     }
   }
-  const bool need_close = tracked_close < 100 && untracked_close > settings_.tracking.close_points_min;
+  const bool need_close = tracked_close < settings_.tracking.close_tracked_max && untracked_close > settings_.tracking.close_points_min;
   const bool mapper_idle = !mapper || mapper->Queued() == 0;
   const bool c1a = since >= settings_.tracking.keyframe_max_frames;
   const bool c1b = mapper_idle;
-  const bool c1c = inliers < 0.25 * ref_matches || need_close;
-  const bool c2 = (inliers < settings_.tracking.keyframe_ratio * ref_matches || need_close) && inliers > 15;
+  const bool c1c = inliers < kKeyframeLowShare * ref_matches || need_close;
+  const bool c2 = (inliers < settings_.tracking.keyframe_ratio * ref_matches || need_close) && inliers > kKeyframeMinFloor;
   if (!((c1a || c1b || c1c) && c2)) return false;
   // Real-time mode: when mapping is behind, only a keyframe that is really needed is queued.
   return mapper_idle || (mapper && mapper->Queued() < 3);
@@ -529,7 +549,7 @@ KeyFrame* Tracker::CreateKeyFrame(LocalMapper* mapper) {
   reference_ = kf;
   last_keyframe_frame_ = frame_index_;
   // New map points from the nearest stereo features that have none: all the close ones, and at
-  // least the nearest kMinNewKeyframePoints.
+  // least the nearest tracking.keyframe_new_points.
   const FrameFeatures& f = *kf->features;
   std::vector<std::pair<float, int>> by_depth;
   for (size_t i = 0; i < f.size(); ++i) {
@@ -540,7 +560,7 @@ KeyFrame* Tracker::CreateKeyFrame(LocalMapper* mapper) {
   std::vector<MapPoint*> created;
   int considered = 0;
   for (const auto& [d, i] : by_depth) {
-    if (d > cam_.close_depth_m && considered > kMinNewKeyframePoints) break;
+    if (d > cam_.close_depth_m && considered > settings_.tracking.keyframe_new_points) break;
     ++considered;
     if (kf->points[i]) continue;
     MapPoint* p = map_->AddPoint(T_w_c * f.Unproject(cam_, i), kf);

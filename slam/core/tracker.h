@@ -92,6 +92,7 @@ class Tracker {
   bool lost_ = false;
   int lost_frames_in_row_ = 0;
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  // T_cur_last of the last step
+  Eigen::Isometry3d last_good_T_c_w_ = Eigen::Isometry3d::Identity();  // last pose tracked by vision
   bool have_velocity_ = false;
   KeyFrame* reference_ = nullptr;
   KeyFrame* pending_keyframe_ = nullptr;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/SVD>
+#include <Eigen/Geometry>
 
 #include "common/errors.h"
 
@@ -35,29 +35,18 @@ Alignment UmeyamaAlign(const std::vector<Eigen::Vector3d>& from, const std::vect
   if (from.size() != to.size() || from.size() < 3) {
     throw InputError("alignment needs at least 3 associated poses, got " + std::to_string(from.size()));
   }
-  const double n = static_cast<double>(from.size());
-  Eigen::Vector3d mu_from = Eigen::Vector3d::Zero(), mu_to = Eigen::Vector3d::Zero();
+  Eigen::Matrix3Xd src(3, from.size()), dst(3, to.size());
   for (size_t i = 0; i < from.size(); ++i) {
-    mu_from += from[i];
-    mu_to += to[i];
+    src.col(static_cast<Eigen::Index>(i)) = from[i];
+    dst.col(static_cast<Eigen::Index>(i)) = to[i];
   }
-  mu_from /= n;
-  mu_to /= n;
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  double var_from = 0;
-  for (size_t i = 0; i < from.size(); ++i) {
-    cov += (to[i] - mu_to) * (from[i] - mu_from).transpose();
-    var_from += (from[i] - mu_from).squaredNorm();
-  }
-  cov /= n;
-  var_from /= n;
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
-  if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0) S(2, 2) = -1;  // no reflection
+  // Umeyama (1991), as TUM's evaluate_ate.py aligns; Eigen's implementation keeps the rotation
+  // proper (no reflection) and gives the scale only when asked.
+  const Eigen::Matrix4d T = Eigen::umeyama(src, dst, with_scale);
   Alignment a;
-  a.R = svd.matrixU() * S * svd.matrixV().transpose();
-  a.scale = with_scale && var_from > 0 ? (svd.singularValues().asDiagonal() * S).trace() / var_from : 1.0;
-  a.t = mu_to - a.scale * a.R * mu_from;
+  a.scale = with_scale ? T.block<3, 1>(0, 0).norm() : 1.0;
+  a.R = T.block<3, 3>(0, 0) / a.scale;
+  a.t = T.block<3, 1>(0, 3);
   return a;
 }
 

@@ -85,6 +85,15 @@ void ReadTracking(YamlMapReader* m, TrackingSettings* t) {
   m->Number("keyframe_ratio", &t->keyframe_ratio, kRatio);
   m->Integer("close_points_min", &t->close_points_min, kCount0);
   m->Integer("relocalise_min_inliers", &t->relocalise_min_inliers, NumberRange::Closed(4, kMaxCount));
+  m->Integer("close_tracked_max", &t->close_tracked_max, kCount0);
+  m->Integer("relocalise_ransac_min_inliers", &t->relocalise_ransac_min_inliers, NumberRange::Closed(4, kMaxCount));
+  m->Integer("init_min_points", &t->init_min_points, kCount3);
+  m->Integer("keyframe_new_points", &t->keyframe_new_points, kCount0);
+  m->Integer("keyframe_min_inliers", &t->keyframe_min_inliers, kCount0);
+  m->Integer("reinitialise_after_lost", &t->reinitialise_after_lost, kCount1);
+  m->Number("weak_inliers_factor", &t->weak_inliers_factor, NumberRange::Closed(0, 100));
+  m->Integer("relocalised_frames", &t->relocalised_frames, kCount0);
+  m->Integer("relocalised_min_inliers", &t->relocalised_min_inliers, kCount3);
   m->RejectUnknownKeys();
   if (t->keyframe_min_frames > t->keyframe_max_frames) {
     FailAtEither(m, "keyframe_min_frames", m, "keyframe_max_frames",
@@ -253,6 +262,15 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "keyframe_ratio", t.keyframe_ratio);
   EmitInt(out, "close_points_min", t.close_points_min);
   EmitInt(out, "relocalise_min_inliers", t.relocalise_min_inliers);
+  EmitInt(out, "close_tracked_max", t.close_tracked_max);
+  EmitInt(out, "relocalise_ransac_min_inliers", t.relocalise_ransac_min_inliers);
+  EmitInt(out, "init_min_points", t.init_min_points);
+  EmitInt(out, "keyframe_new_points", t.keyframe_new_points);
+  EmitInt(out, "keyframe_min_inliers", t.keyframe_min_inliers);
+  EmitInt(out, "reinitialise_after_lost", t.reinitialise_after_lost);
+  EmitNumber(out, "weak_inliers_factor", t.weak_inliers_factor);
+  EmitInt(out, "relocalised_frames", t.relocalised_frames);
+  EmitInt(out, "relocalised_min_inliers", t.relocalised_min_inliers);
   out << YAML::EndMap;
 
   const MappingSettings& m = s.mapping;

@@ -24,8 +24,17 @@ struct TrackingSettings {
   int keyframe_max_frames = 20;      // a keyframe at least this often
   int keyframe_min_frames = 0;       // never more often than this
   double keyframe_ratio = 0.75;      // tracked points of the reference keyframe below this share
-  int close_points_min = 70;         // near stereo points tracked; fewer, with enough new: keyframe
-  int relocalise_min_inliers = 40;   // PnP RANSAC inliers to accept a relocalisation
+  int close_points_min = 70;         // near stereo points not tracked above this (with few tracked): keyframe
+  int relocalise_min_inliers = 40;   // pose inliers after a relocalisation's local search to accept it
+  int close_tracked_max = 100;       // near stereo points tracked below this, with close_points_min new ones: keyframe (count)
+  int relocalise_ransac_min_inliers = 12;// PnP RANSAC inliers for a relocalisation candidate to be refined (count)
+  int init_min_points = 100;         // stereo points needed to start a map or a new segment (count)
+  int keyframe_new_points = 100;     // a new keyframe makes map points of at least its this many nearest stereo features (count)
+  int keyframe_min_inliers = 50;     // a frame tracked with fewer inliers never becomes a keyframe (count)
+  int reinitialise_after_lost = 20;  // lost frames in a row before a new map segment is started (frames)
+  double weak_inliers_factor = 3;    // fewer inliers than this times min_inliers: search again with windows 3x as wide (ratio)
+  int relocalised_frames = 20;       // frames after a relocalisation that need relocalised_min_inliers and make no keyframe (frames)
+  int relocalised_min_inliers = 50;  // inliers a frame needs within relocalised_frames after a relocalisation (count)
 };
 
 struct MappingSettings {
