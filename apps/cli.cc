@@ -3,6 +3,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <algorithm>
+#include <thread>
 #include <utility>
 
 #include "apps/usage_error.h"
@@ -44,8 +46,15 @@ const char* const kEvalUsage =
     "    ATE/RPE of two TUM-format trajectories (SE(3) alignment unless --sim3;\n"
     "    RPE over N associated frames, default 1, or over D metres of path)\n";
 const char* const kSweepUsage =
-    "viqu sweep SWEEP.yaml [--jobs N]\n"
-    "    run a parameter grid over scenarios, one process per point\n";
+    "viqu sweep SWEEP.yaml [--jobs N] [--out DIR] [--resume] [--emit slurm|list]\n"
+    "viqu sweep --collect DIR\n"
+    "    run a parameter grid over scenarios and seeds, one `viqu run` per point (docs: README, Sweeps)\n"
+    "    --jobs N         points at once (default: the number of cores)\n"
+    "    --out DIR        sweep folder (default sweeps/<sweep file name>): points/, logs/, results.csv, summary.csv\n"
+    "    --resume         skip points whose run folder is complete\n"
+    "    --emit slurm     write DIR/manifest.txt and DIR/sweep.sbatch (a Slurm job array) instead of running\n"
+    "    --emit list      write DIR/manifest.txt only (for GNU parallel and the like)\n"
+    "    --collect DIR    build the tables from the points finished so far\n";
 const char* const kViewUsage =
     "viqu view SCENARIO.yaml [--set key.path=value ...]\n"
     "    show the scenario in a window (GLFW)\n";
@@ -232,6 +241,7 @@ EvalArgs ParseEval(ArgCursor* c) {
 
 SweepArgs ParseSweep(ArgCursor* c) {
   SweepArgs a;
+  a.jobs = std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::string> pos;
   while (!c->Done()) {
     const std::string arg = c->Next();
@@ -245,9 +255,25 @@ SweepArgs ParseSweep(ArgCursor* c) {
         throw UsageError("sweep: --jobs expects a whole number from 1 to 1024, got '" + v + "'");
       }
       a.jobs = static_cast<int>(n);
+    } else if (arg == "--out") {
+      a.out_dir = c->TakeValue(arg);
+    } else if (arg == "--resume") {
+      c->NoValue(arg);
+      a.resume = true;
+    } else if (arg == "--emit") {
+      a.emit = c->TakeValue(arg);
+      if (a.emit != "slurm" && a.emit != "list") throw UsageError("sweep: --emit expects slurm or list, got '" + a.emit + "'");
+    } else if (arg == "--collect") {
+      a.collect_dir = c->TakeValue(arg);
     } else {
       UnknownOption("sweep", arg);
     }
+  }
+  if (!a.collect_dir.empty()) {
+    if (!pos.empty() || !a.out_dir.empty() || a.resume || !a.emit.empty()) {
+      throw UsageError("sweep: --collect DIR takes no sweep file and no other option");
+    }
+    return a;
   }
   ExpectPositionals("sweep", pos, 1, "SWEEP.yaml");
   a.sweep_file = pos[0];

@@ -36,10 +36,14 @@ struct EvalArgs {
   double delta_m = 0;             // RPE pair distance in metres of path (--delta-m D); 0 = frames
 };
 
-// `viqu sweep SWEEP.yaml [--jobs N]`
+// `viqu sweep SWEEP.yaml [--jobs N] [--out DIR] [--resume] [--emit slurm|list]`, `viqu sweep --collect DIR`
 struct SweepArgs {
-  std::string sweep_file;         // sweep manifest YAML
-  int jobs = 1;                   // parallel processes (>= 1)
+  std::string sweep_file;         // sweep YAML (apps/sweep_spec.h); empty with --collect
+  int jobs = 1;                   // parallel processes (>= 1); the parser fills in the number of cores
+  std::string out_dir;            // sweep folder; empty = sweeps/<sweep file name>
+  bool resume = false;            // skip points whose run folder is complete
+  std::string emit;               // "" (run), "slurm" or "list": write the manifest instead
+  std::string collect_dir;        // --collect: build the tables of this sweep folder
 };
 
 // `viqu view SCENARIO.yaml [--set key.path=value ...]`

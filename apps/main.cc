@@ -1,5 +1,7 @@
 // The `viqu` command-line program: parses the command line, loads the inputs and hands them to
 // the libraries. Exit codes (DESIGN.md): 0 ok, 1 run failed, 2 bad input or usage.
+#include <unistd.h>
+
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -9,6 +11,7 @@
 #include "apps/run_options.h"
 #include "apps/run_scenario.h"
 #include "apps/slam_command.h"
+#include "apps/sweep_command.h"
 #include "apps/usage_error.h"
 #include "common/errors.h"
 #include "common/stop_signal.h"
@@ -24,6 +27,14 @@ constexpr int kExitBadInput = 2;
 int NotImplemented(const std::string& command) {
   std::fprintf(stderr, "viqu: '%s' is not implemented yet\n", command.c_str());
   return kExitBadInput;
+}
+
+// This program's own file: sweeps start it once per point.
+std::string SelfPath() {
+  char buf[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (n <= 0) throw RunError("cannot find the viqu program's own path (/proc/self/exe)");
+  return std::string(buf, static_cast<size_t>(n));
 }
 
 int Run(const RunArgs& args, const std::string& command_line) {
@@ -42,7 +53,7 @@ int Dispatch(const CliArgs& args) {
     case Command::kRun: return Run(args.run, args.command_line);
     case Command::kSlam: return RunSlamCommand(args.slam, args.command_line);
     case Command::kEval: return RunEval(args.eval);
-    case Command::kSweep: return NotImplemented("sweep");
+    case Command::kSweep: return RunSweepCommand(args.sweep, SelfPath());
     case Command::kView: return NotImplemented("view");
   }
   return kExitBadInput;

@@ -95,6 +95,14 @@ TEST(Cli, OtherSubcommandsParseTheirOptions) {
   ASSERT_EQ(w.command, Command::kSweep);
   EXPECT_EQ(w.sweep.sweep_file, "sweep.yaml");
   EXPECT_EQ(w.sweep.jobs, 4);
+  EXPECT_GE(Parse({"sweep", "s.yaml"}).sweep.jobs, 1);  // the number of cores
+  const CliArgs all = Parse({"sweep", "s.yaml", "--out", "d", "--resume", "--emit", "slurm"});
+  EXPECT_EQ(all.sweep.out_dir, "d");
+  EXPECT_TRUE(all.sweep.resume);
+  EXPECT_EQ(all.sweep.emit, "slurm");
+  EXPECT_EQ(Parse({"sweep", "--collect", "d"}).sweep.collect_dir, "d");
+  EXPECT_EQ(UsageErrorOf({"sweep", "s.yaml", "--emit", "pbs"}), "sweep: --emit expects slurm or list, got 'pbs'");
+  EXPECT_EQ(UsageErrorOf({"sweep", "s.yaml", "--collect", "d"}), "sweep: --collect DIR takes no sweep file and no other option");
 
   const CliArgs v = Parse({"view", "s.yaml", "--set", "seed=3"});
   ASSERT_EQ(v.command, Command::kView);
@@ -171,9 +179,9 @@ TEST(CliProgram, ExitCodesAndMessages) {
   EXPECT_EQ(malformed.output.rfind("viqu: " + dir + "/bad.yaml:3:1: YAML syntax error", 0), 0u) << malformed.output;
   std::filesystem::remove_all(dir);
 
-  const ProgramResult later = RunViqu("sweep s.yaml --jobs 2");
+  const ProgramResult later = RunViqu("view s.yaml");
   EXPECT_EQ(later.exit_code, 2);
-  EXPECT_EQ(later.output, "viqu: 'sweep' is not implemented yet\n");
+  EXPECT_EQ(later.output, "viqu: 'view' is not implemented yet\n");
 }
 
 std::string ReadAll(const std::string& path) {

@@ -1,0 +1,248 @@
+#include "apps/sweep_command.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <thread>
+#include <vector>
+
+#include "apps/sweep_spec.h"
+#include "apps/sweep_tables.h"
+#include "common/atomic_file.h"
+#include "common/errors.h"
+#include "common/run_folder.h"
+#include "common/stop_signal.h"
+
+extern char** environ;
+
+namespace viqu::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// How long a point stopped for its timeout (or the sweep's stop) gets between SIGTERM and
+// SIGKILL: a run finishes its outputs at the next physics step, well within this.
+constexpr double kStopGraceS = 10;
+// How often the scheduler looks at its children (s).
+constexpr double kPollS = 0.05;
+
+// Shell quoting for the manifest.
+std::string ShellQuote(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./=:,+@%") ==
+                        std::string::npos) {
+    return s;
+  }
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::vector<std::string> PointArgs(const std::string& viqu_exe, const SweepPoint& p, const std::string& dir) {
+  std::vector<std::string> a = {viqu_exe, "run", p.scenario, "--out", dir + "/points/" + p.id};
+  for (const std::string& s : p.sets) {
+    a.push_back("--set");
+    a.push_back(s);
+  }
+  return a;
+}
+
+pid_t Spawn(const std::vector<std::string>& args, const std::string& log) {
+  std::vector<std::string> copy = args;
+  std::vector<char*> argv;
+  for (std::string& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw RunError("cannot start " + args[0] + " for a sweep point");
+  return pid;
+}
+
+std::string Duration(double s) {
+  char buf[32];
+  if (s >= 120) {
+    std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  }
+  return buf;
+}
+
+void WritePlan(const SweepSpec& spec, const std::vector<SweepPoint>& points, const std::string& viqu_exe,
+               const std::string& dir) {
+  WriteFileAtomic(dir + "/sweep.yaml", "# the sweep as resolved by viqu (absolute scenario paths)\n" + SweepSpecToYaml(spec));
+  std::string manifest;
+  for (const SweepPoint& p : points) {
+    std::string line;
+    for (const std::string& a : PointArgs(viqu_exe, p, dir)) line += (line.empty() ? "" : " ") + ShellQuote(a);
+    manifest += line + " > " + ShellQuote(dir + "/logs/" + p.id + ".log") + " 2>&1\n";
+  }
+  WriteFileAtomic(dir + "/manifest.txt", manifest);
+}
+
+// Runs the points not yet complete; fills outcomes[i] of those it ran. Returns the stop signal
+// (0 when every point ran).
+int RunPoints(const SweepSpec& spec, const std::vector<SweepPoint>& points, const std::vector<bool>& todo,
+              const std::string& viqu_exe, const std::string& dir, int jobs, std::vector<PointOutcome>* outcomes) {
+  struct Running {
+    size_t index = 0;
+    Clock::time_point start;
+    bool terminated = false;  // SIGTERM sent (timeout or stop)
+    bool timed_out = false;
+    Clock::time_point term_time;
+  };
+  std::map<pid_t, Running> running;
+  size_t next = 0, total = 0, done = 0, failed = 0;
+  for (bool t : todo) total += t ? 1 : 0;
+  double busy_s = 0;  // summed wall time of finished points, for the estimate
+  const auto sweep_start = Clock::now();
+  int stop = 0;
+  while (true) {
+    if (stop == 0) stop = StopSignal();
+    while (stop == 0 && static_cast<int>(running.size()) < jobs && next < points.size()) {
+      if (!todo[next]) {
+        ++next;
+        continue;
+      }
+      const SweepPoint& p = points[next];
+      const pid_t pid = Spawn(PointArgs(viqu_exe, p, dir), dir + "/logs/" + p.id + ".log");
+      Running r;
+      r.index = next;
+      r.start = Clock::now();
+      running[pid] = r;
+      ++next;
+    }
+    if (running.empty()) break;
+    const auto now = Clock::now();
+    for (auto& [pid, r] : running) {
+      const double age = std::chrono::duration<double>(now - r.start).count();
+      if (!r.terminated && (stop != 0 || (spec.timeout_s > 0 && age > spec.timeout_s))) {
+        r.timed_out = stop == 0;
+        r.terminated = true;
+        r.term_time = now;
+        ::kill(pid, SIGTERM);
+      } else if (r.terminated && std::chrono::duration<double>(now - r.term_time).count() > kStopGraceS) {
+        ::kill(pid, SIGKILL);
+      }
+    }
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, WNOHANG);
+    if (pid <= 0) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(kPollS));
+      continue;
+    }
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const Running r = it->second;
+    running.erase(it);
+    const SweepPoint& p = points[r.index];
+    PointOutcome o = ReadPointOutcome(spec, dir + "/points/" + p.id);
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    o.exit_code = std::to_string(code);
+    if (r.timed_out) {
+      o.status = "timeout";
+    } else if (o.status == "missing") {
+      o.status = "failed";
+    }
+    (*outcomes)[r.index] = o;
+    ++done;
+    if (o.status != "ok") ++failed;
+    busy_s += std::chrono::duration<double>(Clock::now() - r.start).count();
+    const double elapsed = std::chrono::duration<double>(Clock::now() - sweep_start).count();
+    const double left = done > 0 ? elapsed / done * (total - done) : 0;
+    std::fprintf(stderr, "viqu sweep: %zu/%zu done (%zu failed), %zu running, about %s left; %s %s (exit %d)\n", done,
+                 total, failed, running.size(), Duration(left).c_str(), p.id.c_str(), o.status.c_str(), code);
+  }
+  (void)busy_s;
+  return stop;
+}
+
+}  // namespace
+
+int RunSweepCommand(const SweepArgs& args, const std::string& viqu_exe) {
+  const bool collect = !args.collect_dir.empty();
+  const std::string dir = collect ? args.collect_dir
+                                  : (args.out_dir.empty() ? "sweeps/" + fs::path(args.sweep_file).stem().string() : args.out_dir);
+  const SweepSpec spec = LoadSweepSpec(collect ? dir + "/sweep.yaml" : args.sweep_file);
+  const std::vector<SweepPoint> points = ExpandSweep(spec);
+  std::error_code ec;
+  if (!collect) {
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("--out " + dir + " exists and is not a folder");
+    if (fs::exists(dir + "/sweep.yaml", ec) && !args.resume && args.emit.empty()) {
+      throw InputError("--out " + dir + " holds a sweep already: pass --resume to finish it, or choose another folder");
+    }
+    fs::create_directories(dir + "/points", ec);
+    fs::create_directories(dir + "/logs", ec);
+    if (ec) throw InputError("cannot create sweep folder " + dir + ": " + ec.message());
+    WritePlan(spec, points, fs::absolute(viqu_exe).string(), fs::absolute(dir).lexically_normal().string());
+  }
+  if (!args.emit.empty()) {
+    if (args.emit == "slurm") {
+      const std::string abs = fs::absolute(dir).lexically_normal().string();
+      std::string sbatch =
+          "#!/bin/bash\n"
+          "# A Slurm job array over the points of this sweep: task i runs line i + 1 of manifest.txt.\n"
+          "# Submit with `sbatch " + ShellQuote(abs + "/sweep.sbatch") + "`; afterwards `viqu sweep --collect " +
+          ShellQuote(abs) + "`.\n"
+          "#SBATCH --job-name=viqu-sweep\n"
+          "#SBATCH --array=0-" + std::to_string(points.size() - 1) + "\n"
+          "#SBATCH --cpus-per-task=1\n"
+          "#SBATCH --output=" + abs + "/logs/slurm-%a.out\n"
+          "set -euo pipefail\n"
+          "line=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " + ShellQuote(abs + "/manifest.txt") + ")\n"
+          "eval \"$line\"\n";
+      WriteFileAtomic(dir + "/sweep.sbatch", sbatch);
+      std::printf("viqu sweep: %zu points: %s/manifest.txt and %s/sweep.sbatch (then viqu sweep --collect %s)\n",
+                  points.size(), dir.c_str(), dir.c_str(), dir.c_str());
+    } else {
+      std::printf("viqu sweep: %zu points: %s/manifest.txt, one command per line (then viqu sweep --collect %s)\n",
+                  points.size(), dir.c_str(), dir.c_str());
+    }
+    return 0;
+  }
+
+  std::vector<PointOutcome> outcomes(points.size());
+  std::vector<bool> todo(points.size(), !collect);
+  size_t skipped = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const std::string run_dir = dir + "/points/" + points[i].id;
+    if (collect || (args.resume && IsCompleteRunFolder(run_dir))) {
+      outcomes[i] = ReadPointOutcome(spec, run_dir);
+      todo[i] = false;
+      ++skipped;
+    }
+  }
+  int stop = 0;
+  if (!collect) {
+    std::fprintf(stderr, "viqu sweep: %zu points (%zu complete already), %d at once, folder %s\n", points.size(), skipped,
+                 args.jobs, dir.c_str());
+    stop = RunPoints(spec, points, todo, viqu_exe, dir, args.jobs, &outcomes);
+  }
+  const std::vector<std::string> best = WriteSweepTables(spec, points, outcomes, dir);
+  size_t ok = 0;
+  for (const PointOutcome& o : outcomes) ok += o.status == "ok" ? 1 : 0;
+  std::printf("viqu sweep: %zu of %zu points ok; %s/results.csv, %s/summary.csv\n", ok, points.size(), dir.c_str(),
+              dir.c_str());
+  for (const std::string& line : best) std::printf("best %s\n", line.c_str());
+  if (stop != 0) {
+    std::fprintf(stderr, "viqu sweep: stopped by %s; `viqu sweep %s --out %s --resume` finishes it\n", SignalName(stop),
+                 args.sweep_file.c_str(), dir.c_str());
+    return ExitCodeForSignal(stop);
+  }
+  return 0;
+}
+
+}  // namespace viqu::app

@@ -1,0 +1,217 @@
+#include "apps/sweep_spec.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include <yaml-cpp/yaml.h>
+
+#include "common/errors.h"
+#include "common/yaml_strict.h"
+#include "scenario/scenario_loader.h"
+
+namespace viqu::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The most points a sweep may expand to: beyond it a typo in a count is more likely than a plan.
+constexpr size_t kMaxPoints = 100000;
+
+// A value as `--set` takes it: scalars as written, lists and maps in YAML flow form.
+std::string SetText(const YAML::Node& v) {
+  if (v.IsScalar()) return v.Scalar();
+  YAML::Emitter out;
+  out << YAML::Flow << v;
+  return out.c_str();
+}
+
+// A map whose keys are free (grid, fixed, best): key nodes and value nodes in file order.
+std::vector<std::pair<YAML::Node, YAML::Node>> Entries(const YamlSource& src, const YAML::Node& map, const std::string& key) {
+  std::vector<std::pair<YAML::Node, YAML::Node>> out;
+  if (!map.IsDefined() || map.IsNull()) return out;
+  if (!map.IsMap()) src.Fail(key, map, "key '" + key + "' expected a map, got " + DescribeYamlValue(map));
+  std::set<std::string> seen;
+  for (const auto& kv : map) {
+    const std::string name = kv.first.Scalar();
+    if (!seen.insert(name).second) src.Fail(key + "." + name, kv.first, "key '" + key + "." + name + "' appears twice");
+    out.emplace_back(kv.first, kv.second);
+  }
+  return out;
+}
+
+}  // namespace
+
+SweepSpec LoadSweepSpec(const std::string& path) {
+  SweepSpec spec;
+  spec.source_file = path;
+  const YamlSource src(path);
+  const YAML::Node root = LoadYamlFile(path);
+  YamlMapReader top(src, root, "");
+  const fs::path base = fs::absolute(path).parent_path();
+
+  top.Require("scenarios");
+  const YAML::Node scenarios = top.List("scenarios");
+  if (scenarios.size() == 0) src.Fail("scenarios", top.Get("scenarios"), "key 'scenarios' needs at least one scenario file");
+  for (size_t i = 0; i < scenarios.size(); ++i) {
+    const std::string key = "scenarios." + std::to_string(i);
+    const std::string file = ReadYamlString(src, scenarios[i], key);
+    const fs::path p = fs::path(file).is_absolute() ? fs::path(file) : base / file;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) src.Fail(key, scenarios[i], "scenario file not found: " + p.lexically_normal().string());
+    spec.scenarios.push_back(p.lexically_normal().string());
+  }
+
+  if (top.Has("seeds")) {
+    const YAML::Node seeds = top.Get("seeds");
+    if (seeds.IsScalar()) {
+      const int64_t n = ReadYamlInteger(src, seeds, "seeds", NumberRange::Closed(1, 10000));
+      for (int64_t s = 1; s <= n; ++s) spec.seeds.push_back(static_cast<uint64_t>(s));
+    } else {
+      const YAML::Node list = top.List("seeds");
+      std::set<uint64_t> seen;
+      for (size_t i = 0; i < list.size(); ++i) {
+        const uint64_t s = ReadYamlUnsigned(src, list[i], "seeds." + std::to_string(i));
+        if (!seen.insert(s).second) src.Fail("seeds." + std::to_string(i), list[i], "seed " + std::to_string(s) + " appears twice");
+        spec.seeds.push_back(s);
+      }
+      if (spec.seeds.empty()) src.Fail("seeds", seeds, "key 'seeds' needs at least one seed (or a count)");
+    }
+  } else {
+    spec.seeds = {1};
+  }
+
+  for (const auto& [k, v] : Entries(src, top.Get("grid"), "grid")) {
+    const std::string key = k.Scalar();
+    if (key == "seed") src.Fail("grid.seed", k, "seeds are swept with the 'seeds' key, not in the grid");
+    if (!v.IsSequence() || v.size() == 0) {
+      src.Fail("grid." + key, v, "key 'grid." + key + "' expected a non-empty list of values, got " + DescribeYamlValue(v));
+    }
+    std::vector<std::string> values;
+    for (const YAML::Node& x : v) values.push_back(SetText(x));
+    spec.grid.emplace_back(key, values);
+  }
+  for (const auto& [k, v] : Entries(src, top.Get("fixed"), "fixed")) {
+    if (k.Scalar() == "seed") src.Fail("fixed.seed", k, "seeds are set with the 'seeds' key");
+    for (const auto& [g, values] : spec.grid) {
+      if (g == k.Scalar()) src.Fail("fixed." + g, k, "key '" + g + "' is both fixed and in the grid");
+    }
+    spec.fixed.emplace_back(k.Scalar(), SetText(v));
+  }
+
+  const YAML::Node metrics = top.List("metrics");
+  std::set<std::string> metric_names;
+  for (size_t i = 0; i < metrics.size(); ++i) {
+    const std::string m = ReadYamlString(src, metrics[i], "metrics." + std::to_string(i));
+    if (!metric_names.insert(m).second) src.Fail("metrics." + std::to_string(i), metrics[i], "metric '" + m + "' appears twice");
+    spec.metrics.push_back(m);
+  }
+  if (spec.metrics.empty()) spec.metrics = {"ate.rmse_m", "tracking.lost_frames"};
+  spec.maximise.assign(spec.metrics.size(), false);
+  for (const auto& [k, v] : Entries(src, top.Get("best"), "best")) {
+    const std::string m = k.Scalar();
+    const auto it = std::find(spec.metrics.begin(), spec.metrics.end(), m);
+    if (it == spec.metrics.end()) src.Fail("best." + m, k, "'" + m + "' is not one of the metrics");
+    const std::string dir = ReadYamlChoice(src, v, "best." + m, {"min", "max"});
+    spec.maximise[static_cast<size_t>(it - spec.metrics.begin())] = dir == "max";
+  }
+  top.Number("timeout_s", &spec.timeout_s, NumberRange::NonNegative());
+  top.RejectUnknownKeys();
+
+  size_t points = spec.scenarios.size() * spec.seeds.size();
+  for (const auto& g : spec.grid) points *= g.second.size();
+  if (points > kMaxPoints) {
+    throw InputError(path + ": the sweep expands to " + std::to_string(points) + " points, more than " +
+                     std::to_string(kMaxPoints));
+  }
+  // Every point's --set list against its scenario: a key or value `viqu run` would reject is
+  // reported now, with the point, before anything runs.
+  for (const SweepPoint& p : ExpandSweep(spec)) {
+    try {
+      LoadScenario(p.scenario, p.sets);
+    } catch (const InputError& e) {
+      throw InputError(path + ": point " + p.id + " (" + p.scenario + "): " + e.what());
+    }
+  }
+  return spec;
+}
+
+std::vector<SweepPoint> ExpandSweep(const SweepSpec& spec) {
+  std::vector<SweepPoint> out;
+  size_t combinations = 1;
+  for (const auto& g : spec.grid) combinations *= g.second.size();
+  for (const std::string& scenario : spec.scenarios) {
+    std::string name;
+    try {
+      name = LoadScenario(scenario).name;
+    } catch (const InputError&) {
+      name = fs::path(scenario).stem().string();  // the error is LoadSweepSpec's to report
+    }
+    for (size_t c = 0; c < combinations; ++c) {
+      // Combination c, the last grid key fastest.
+      std::vector<size_t> index(spec.grid.size());
+      size_t rest = c;
+      for (size_t g = spec.grid.size(); g-- > 0;) {
+        index[g] = rest % spec.grid[g].second.size();
+        rest /= spec.grid[g].second.size();
+      }
+      for (uint64_t seed : spec.seeds) {
+        SweepPoint p;
+        char id[16];
+        std::snprintf(id, sizeof id, "p%04zu", out.size());
+        p.id = id;
+        p.scenario = scenario;
+        p.scenario_name = name;
+        p.seed = seed;
+        for (const auto& [k, v] : spec.fixed) p.sets.push_back(k + "=" + v);
+        for (size_t g = 0; g < spec.grid.size(); ++g) {
+          p.values.push_back(spec.grid[g].second[index[g]]);
+          p.sets.push_back(spec.grid[g].first + "=" + p.values.back());
+        }
+        p.sets.push_back("seed=" + std::to_string(seed));
+        out.push_back(std::move(p));
+      }
+    }
+  }
+  return out;
+}
+
+std::string SweepSpecToYaml(const SweepSpec& spec) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  out << YAML::Key << "scenarios" << YAML::Value << YAML::BeginSeq;
+  for (const std::string& s : spec.scenarios) out << YAML::DoubleQuoted << s;
+  out << YAML::EndSeq;
+  out << YAML::Key << "seeds" << YAML::Value << YAML::Flow << spec.seeds;
+  if (!spec.grid.empty()) {
+    out << YAML::Key << "grid" << YAML::Value << YAML::BeginMap;
+    for (const auto& [k, values] : spec.grid) {
+      out << YAML::Key << k << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (const std::string& v : values) out << YAML::Load(v);
+      out << YAML::EndSeq;
+    }
+    out << YAML::EndMap;
+  }
+  if (!spec.fixed.empty()) {
+    out << YAML::Key << "fixed" << YAML::Value << YAML::BeginMap;
+    for (const auto& [k, v] : spec.fixed) out << YAML::Key << k << YAML::Value << YAML::Load(v);
+    out << YAML::EndMap;
+  }
+  out << YAML::Key << "metrics" << YAML::Value << YAML::Flow << spec.metrics;
+  bool any_max = false;
+  for (bool m : spec.maximise) any_max = any_max || m;
+  if (any_max) {
+    out << YAML::Key << "best" << YAML::Value << YAML::BeginMap;
+    for (size_t i = 0; i < spec.metrics.size(); ++i) {
+      if (spec.maximise[i]) out << YAML::Key << spec.metrics[i] << YAML::Value << "max";
+    }
+    out << YAML::EndMap;
+  }
+  if (spec.timeout_s > 0) out << YAML::Key << "timeout_s" << YAML::Value << spec.timeout_s;
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace viqu::app
