@@ -25,7 +25,8 @@ const char* const kRunUsage =
     "    --no-slam        simulate and record ground truth only\n"
     "    --record         also write an EuRoC-layout dataset under DIR/dataset\n"
     "    --record-tum     also write a TUM RGB-D dataset of the left camera under DIR/dataset_tum\n"
-    "    --video          also write DIR/video.mp4\n";
+    "    --video          also write DIR/video.mp4\n"
+    "    --report         also plot the run into DIR/plots (viqu report)\n";
 const char* const kSlamUsage =
     "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--camera FILE] [--out DIR] [--force]\n"
     "          [--masks DIR] [--set key.path=value ...]\n"
@@ -55,6 +56,11 @@ const char* const kSweepUsage =
     "    --emit slurm     write DIR/manifest.txt and DIR/sweep.sbatch (a Slurm job array) instead of running\n"
     "    --emit list      write DIR/manifest.txt only (for GNU parallel and the like)\n"
     "    --collect DIR    build the tables from the points finished so far\n";
+const char* const kReportUsage =
+    "viqu report DIR [--x KEY] [--y KEY] [--metric M]\n"
+    "    plots (matplotlib, headless) into DIR/plots: for a run folder the top view, the error over\n"
+    "    time and the dynamic-object timeline; for a sweep folder a heatmap of M over the grid keys\n"
+    "    --x and --y, or a line over --x with the seeds' spread\n";
 const char* const kViewUsage =
     "viqu view SCENARIO.yaml [--set key.path=value ...]\n"
     "    show the scenario in a window (GLFW)\n";
@@ -151,6 +157,9 @@ RunArgs ParseRun(ArgCursor* c) {
     } else if (arg == "--video") {
       c->NoValue(arg);
       a.options.video = true;
+    } else if (arg == "--report") {
+      c->NoValue(arg);
+      a.options.report = true;
     } else {
       UnknownOption("run", arg);
     }
@@ -280,6 +289,25 @@ SweepArgs ParseSweep(ArgCursor* c) {
   return a;
 }
 
+ReportArgs ParseReport(ArgCursor* c) {
+  ReportArgs a;
+  std::vector<std::string> pos;
+  while (!c->Done()) {
+    const std::string arg = c->Next();
+    if (!IsOption(arg)) {
+      pos.push_back(arg);
+    } else if (arg == "--x" || arg == "--y" || arg == "--metric") {
+      a.tool_args.push_back(arg);
+      a.tool_args.push_back(c->TakeValue(arg));
+    } else {
+      UnknownOption("report", arg);
+    }
+  }
+  ExpectPositionals("report", pos, 1, "DIR");
+  a.dir = pos[0];
+  return a;
+}
+
 ViewArgs ParseView(ArgCursor* c) {
   ViewArgs a;
   std::vector<std::string> pos;
@@ -310,7 +338,7 @@ CliArgs ParseCommandLine(int argc, const char* const argv[]) {
     if (arg == "-h" || arg == "--help") {
       args.command = Command::kHelp;
       const bool known = command == "run" || command == "slam" || command == "eval" ||
-                         command == "sweep" || command == "view";
+                         command == "sweep" || command == "report" || command == "view";
       args.help_topic = known ? command : "";
       return args;
     }
@@ -348,6 +376,9 @@ CliArgs ParseCommandLine(int argc, const char* const argv[]) {
   } else if (command == "sweep") {
     args.command = Command::kSweep;
     args.sweep = ParseSweep(&cursor);
+  } else if (command == "report") {
+    args.command = Command::kReport;
+    args.report = ParseReport(&cursor);
   } else if (command == "view") {
     args.command = Command::kView;
     args.view = ParseView(&cursor);
@@ -362,10 +393,11 @@ std::string UsageText(const std::string& topic) {
   if (topic == "slam") return std::string("usage: ") + kSlamUsage;
   if (topic == "eval") return std::string("usage: ") + kEvalUsage;
   if (topic == "sweep") return std::string("usage: ") + kSweepUsage;
+  if (topic == "report") return std::string("usage: ") + kReportUsage;
   if (topic == "view") return std::string("usage: ") + kViewUsage;
   if (!topic.empty()) return "";
   return std::string("usage: viqu COMMAND [ARGS]   (viqu COMMAND --help for details)\n\n") + kRunUsage +
-         kSlamUsage + kEvalUsage + kSweepUsage + kViewUsage +
+         kSlamUsage + kEvalUsage + kSweepUsage + kReportUsage + kViewUsage +
          "\nexit codes: 0 ok, 1 run failed, 2 bad input or usage\n";
 }
 

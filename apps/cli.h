@@ -46,13 +46,19 @@ struct SweepArgs {
   std::string collect_dir;        // --collect: build the tables of this sweep folder
 };
 
+// `viqu report DIR [--x KEY] [--y KEY] [--metric M]`
+struct ReportArgs {
+  std::string dir;                // run folder or sweep folder
+  std::vector<std::string> tool_args;  // --x/--y/--metric, passed on to tools/report.py
+};
+
 // `viqu view SCENARIO.yaml [--set key.path=value ...]`
 struct ViewArgs {
   std::string scenario;           // scenario YAML path
   std::vector<std::string> sets;  // overrides, as for run
 };
 
-enum class Command { kHelp, kRun, kSlam, kEval, kSweep, kView };
+enum class Command { kHelp, kRun, kSlam, kEval, kSweep, kReport, kView };
 
 // The parsed command line; only the member of `command` is filled in.
 struct CliArgs {
@@ -63,6 +69,7 @@ struct CliArgs {
   SlamArgs slam;
   EvalArgs eval;
   SweepArgs sweep;
+  ReportArgs report;
   ViewArgs view;
 };
 

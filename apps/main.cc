@@ -10,6 +10,7 @@
 #include "apps/eval_command.h"
 #include "apps/run_options.h"
 #include "apps/run_scenario.h"
+#include "apps/report_command.h"
 #include "apps/slam_command.h"
 #include "apps/sweep_command.h"
 #include "apps/usage_error.h"
@@ -42,7 +43,12 @@ int Run(const RunArgs& args, const std::string& command_line) {
   RunOptions options = args.options;
   options.command_line = command_line;
   if (options.out_dir.empty()) options.out_dir = "runs/" + scenario.name;
-  return RunScenario(scenario, options);
+  const int code = RunScenario(scenario, options);
+  if (options.report && (code == 0 || code == 1)) {
+    const int report = RunReport(options.out_dir, {});
+    if (report != 0) std::fprintf(stderr, "viqu: the report failed (exit %d); the run folder is complete\n", report);
+  }
+  return code;
 }
 
 int Dispatch(const CliArgs& args) {
@@ -54,6 +60,7 @@ int Dispatch(const CliArgs& args) {
     case Command::kSlam: return RunSlamCommand(args.slam, args.command_line);
     case Command::kEval: return RunEval(args.eval);
     case Command::kSweep: return RunSweepCommand(args.sweep, SelfPath());
+    case Command::kReport: return RunReport(args.report.dir, args.report.tool_args);
     case Command::kView: return NotImplemented("view");
   }
   return kExitBadInput;

@@ -10,6 +10,7 @@ packages=(
   libmujoco-dev libqhull-dev libeigen3-dev libopencv-dev liburdfdom-dev libconsole-bridge-dev zlib1g-dev libceres-dev libyaml-cpp-dev
   libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
   googletest libgtest-dev libbenchmark-dev
+  python3-matplotlib python3-numpy python3-yaml
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -101,6 +101,12 @@ TEST(Cli, OtherSubcommandsParseTheirOptions) {
   EXPECT_TRUE(all.sweep.resume);
   EXPECT_EQ(all.sweep.emit, "slurm");
   EXPECT_EQ(Parse({"sweep", "--collect", "d"}).sweep.collect_dir, "d");
+  const CliArgs rep = Parse({"report", "sweeps/x", "--x", "a.b", "--metric=ate.rmse_m"});
+  EXPECT_EQ(rep.command, Command::kReport);
+  EXPECT_EQ(rep.report.dir, "sweeps/x");
+  EXPECT_EQ(rep.report.tool_args, (std::vector<std::string>{"--x", "a.b", "--metric", "ate.rmse_m"}));
+  EXPECT_TRUE(Parse({"run", "s.yaml", "--report"}).run.options.report);
+  EXPECT_EQ(UsageErrorOf({"report"}), "report: missing DIR");
   EXPECT_EQ(UsageErrorOf({"sweep", "s.yaml", "--emit", "pbs"}), "sweep: --emit expects slurm or list, got 'pbs'");
   EXPECT_EQ(UsageErrorOf({"sweep", "s.yaml", "--collect", "d"}), "sweep: --collect DIR takes no sweep file and no other option");
 

@@ -1,0 +1,361 @@
+#!/usr/bin/python3
+"""Plots of a viqu run folder or sweep folder (`viqu report DIR`), headless, from the folder alone.
+
+A run folder (complete: run_complete.json) gives DIR/plots/
+  trajectory_top.png   top view: ground truth, SLAM estimate, leg odometry (when present), the
+                       obstacles' paths, lost and relocalised frames marked;
+  error_time.png       position error of the aligned estimate over time, with the moving
+                       obstacles' share of the image on a second axis;
+  dynamic_timeline.png per object: when it truly moved and when it was judged dynamic.
+A sweep folder (sweep.yaml, results.csv) gives DIR/plots/
+  heatmap_<metric>.png  mean of a metric over two grid keys (--x, --y);
+  line_<metric>.png     mean and seed spread of a metric over one grid key (--x).
+
+Uses Debian's python3-matplotlib, numpy and yaml. Exit code 2 on bad input (the message names the
+file), as the viqu program does.
+"""
+import argparse
+import csv
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")  # headless
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import yaml  # noqa: E402
+
+FIGSIZE = (8, 6)  # inches
+DPI = 100         # 800 x 600 px images
+MAX_ASSOC_S = 0.02  # association window of TUM's evaluate_ate.py (s)
+
+
+class BadInput(Exception):
+    pass
+
+
+def read_tum(path):
+    """(t, xyz) arrays of a TUM trajectory file; None when the file is absent."""
+    if not os.path.exists(path):
+        return None
+    rows = []
+    with open(path) as f:
+        for n, line in enumerate(f, 1):
+            s = line.strip()
+            if not s or s.startswith("#"):
+                continue
+            parts = s.split()
+            if len(parts) != 8:
+                raise BadInput(f"{path}:{n}: expected 8 numbers 't tx ty tz qx qy qz qw'")
+            rows.append([float(x) for x in parts[:4]])
+    a = np.array(rows, dtype=float).reshape(-1, 4)
+    return a[:, 0], a[:, 1:4]
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def associate(t_est, t_gt):
+    """Index pairs (i, j): each estimate stamp with the nearest ground-truth stamp within 0.02 s."""
+    pairs = []
+    for i, t in enumerate(t_est):
+        j = int(np.argmin(np.abs(t_gt - t)))
+        if abs(t_gt[j] - t) <= MAX_ASSOC_S:
+            pairs.append((i, j))
+    return pairs
+
+
+def umeyama_se3(src, dst):
+    """R, t minimising |dst - (R src + t)|^2 (Umeyama 1991, no scale)."""
+    mu_s, mu_d = src.mean(axis=0), dst.mean(axis=0)
+    cov = (dst - mu_d).T @ (src - mu_s) / len(src)
+    u, _, vt = np.linalg.svd(cov)
+    s = np.eye(3)
+    if np.linalg.det(u) * np.linalg.det(vt) < 0:
+        s[2, 2] = -1
+    r = u @ s @ vt
+    return r, mu_d - r @ mu_s
+
+
+def aligned_errors(est, gt):
+    """(t, error) of an estimate against the ground truth after SE(3) alignment, as viqu eval."""
+    (t_e, p_e), (t_g, p_g) = est, gt
+    pairs = associate(t_e, t_g)
+    if len(pairs) < 3:
+        return np.zeros(0), np.zeros(0)
+    i, j = np.array(pairs).T
+    r, t = umeyama_se3(p_e[i], p_g[j])
+    err = np.linalg.norm(p_g[j] - (p_e[i] @ r.T + t), axis=1)
+    return t_e[i], err
+
+
+def require_complete_run(run_dir):
+    marker = os.path.join(run_dir, "run_complete.json")
+    if not os.path.exists(marker):
+        why = "no completion marker run_complete.json"
+        inc = os.path.join(run_dir, "run_incomplete.json")
+        if os.path.exists(inc):
+            with open(inc) as f:
+                why = "interrupted: " + json.load(f).get("reason", "")
+        raise BadInput(f"{run_dir}: not a complete run folder: {why}")
+
+
+def plot_trajectory_top(run_dir):
+    """The top-view figure (returned for tests; the caller saves it)."""
+    gt = read_tum(os.path.join(run_dir, "trajectory_gt.txt"))
+    if gt is None:
+        raise BadInput(f"{run_dir}/trajectory_gt.txt: missing")
+    est = read_tum(os.path.join(run_dir, "trajectory_est.txt"))
+    lo = read_tum(os.path.join(run_dir, "trajectory_lo.txt"))
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    with open(os.path.join(run_dir, "scenario.yaml")) as f:
+        scenario = yaml.safe_load(f) or {}
+    for k, ob in enumerate(scenario.get("obstacles") or []):
+        path = np.array(ob.get("path") or [], dtype=float).reshape(-1, 2)
+        if len(path) == 0:
+            continue
+        ax.plot(path[:, 0], path[:, 1], "--", color="0.6", lw=1, label="obstacle paths" if k == 0 else None)
+        ax.plot(path[0, 0], path[0, 1], "s", color="0.6", ms=4)
+        ax.annotate(ob.get("name", ""), path[0], fontsize=8, color="0.4")
+    ax.plot(gt[1][:, 0], gt[1][:, 1], "k-", lw=2, label="ground truth", gid="gt")
+    if est is not None:
+        ax.plot(est[1][:, 0], est[1][:, 1], "-", color="tab:blue", lw=1.2, label="SLAM estimate", gid="est")
+        status = {round(float(r["t_s"]), 6): r["status"] for r in read_csv(os.path.join(run_dir, "tracking.csv"))}
+        for name, style, label in (("lost", "rx", "lost"), ("relocalised", "go", "relocalised")):
+            idx = [i for i, t in enumerate(est[0]) if status.get(round(float(t), 6)) == name]
+            if idx:
+                ax.plot(est[1][idx, 0], est[1][idx, 1], style, ms=5, label=f"{label} ({len(idx)} frames)")
+    if lo is not None:
+        ax.plot(lo[1][:, 0], lo[1][:, 1], "-", color="tab:orange", lw=1, label="leg odometry + IMU", gid="lo")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(f"{scenario.get('name', os.path.basename(run_dir))}: top view (left camera)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def moving_share(run_dir):
+    """(t, share) of the left image covered by truly moving obstacles, from dynamic.csv."""
+    with open(os.path.join(run_dir, "scenario.yaml")) as f:
+        cam = ((yaml.safe_load(f) or {}).get("sensors") or {}).get("camera") or {}
+    pixels = float(cam.get("width", 640)) * float(cam.get("height", 480))
+    share = {}
+    for r in read_csv(os.path.join(run_dir, "dynamic.csv")):
+        t = float(r["t_s"])
+        share.setdefault(t, 0.0)
+        if r.get("truly_moving") == "1":
+            share[t] += float(r["visible_px"]) / pixels
+    ts = np.array(sorted(share))
+    return ts, np.array([share[t] for t in ts])
+
+
+def plot_error_time(run_dir):
+    gt = read_tum(os.path.join(run_dir, "trajectory_gt.txt"))
+    est = read_tum(os.path.join(run_dir, "trajectory_est.txt"))
+    lo = read_tum(os.path.join(run_dir, "trajectory_lo.txt"))
+    if gt is None or est is None:
+        raise BadInput(f"{run_dir}: error_time.png needs trajectory_gt.txt and trajectory_est.txt")
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    t, e = aligned_errors(est, gt)
+    ax.plot(t, e * 1000, "-", color="tab:blue", label="SLAM estimate", gid="est_error")
+    if lo is not None:
+        tl, el = aligned_errors(lo, gt)
+        ax.plot(tl, el * 1000, "-", color="tab:orange", lw=1, label="leg odometry + IMU", gid="lo_error")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("position error after SE(3) alignment (mm)")
+    ax.grid(True, alpha=0.3)
+    ts, share = moving_share(run_dir)
+    if len(ts):
+        ax2 = ax.twinx()
+        ax2.fill_between(ts, share * 100, step="mid", color="tab:red", alpha=0.15)
+        ax2.plot(ts, share * 100, "-", color="tab:red", lw=0.8, label="moving obstacles in view", gid="share")
+        ax2.set_ylabel("moving obstacles' share of the left image (%)", color="tab:red")
+        ax2.set_ylim(bottom=0)
+        h1, l1 = ax.get_legend_handles_labels()
+        h2, l2 = ax2.get_legend_handles_labels()
+        ax.legend(h1 + h2, l1 + l2, loc="upper left", fontsize=8)
+    else:
+        ax.legend(loc="upper left", fontsize=8)
+    ax.set_title("position error over time")
+    fig.tight_layout()
+    return fig
+
+
+def spans(ts, flags, period):
+    """[start, width] of the runs of True in flags (each sample covers one frame period; a gap
+    of more than 1.5 periods between samples, when the object was out of view, ends a run)."""
+    out, start, prev = [], None, None
+    for t, f in zip(ts, flags):
+        if start is not None and (not f or t - prev > 1.5 * period):
+            out.append((start, prev + period - start))
+            start = None
+        if f and start is None:
+            start = t
+        prev = t
+    if start is not None:
+        out.append((start, prev + period - start))
+    return out
+
+
+def plot_dynamic_timeline(run_dir):
+    rows = read_csv(os.path.join(run_dir, "dynamic.csv"))
+    objects = []
+    for r in rows:
+        if r["object"] not in objects:
+            objects.append(r["object"])
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    all_t = sorted({float(r["t_s"]) for r in rows})
+    period = (all_t[1] - all_t[0]) if len(all_t) > 1 else 0.05
+    for k, name in enumerate(objects):
+        mine = [r for r in rows if r["object"] == name]
+        ts = [float(r["t_s"]) for r in mine]
+        moving = [r.get("truly_moving") == "1" for r in mine]
+        decided = [r.get("decided_dynamic") == "1" for r in mine]
+        ax.broken_barh(spans(ts, [True] * len(ts), period), (k - 0.4, 0.8), color="0.9")
+        ax.broken_barh(spans(ts, moving, period), (k - 0.35, 0.3), color="tab:orange",
+                       label="truly moving" if k == 0 else None)
+        ax.broken_barh(spans(ts, decided, period), (k + 0.05, 0.3), color="tab:red",
+                       label="judged dynamic" if k == 0 else None)
+    ax.set_yticks(range(len(objects)))
+    ax.set_yticklabels(objects)
+    ax.set_xlabel("time (s)")
+    ax.set_title("dynamic objects: truth (orange) and decision (red); grey: in view")
+    ax.grid(True, axis="x", alpha=0.3)
+    if objects:
+        ax.legend(loc="lower right", fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def report_run(run_dir):
+    require_complete_run(run_dir)
+    out = os.path.join(run_dir, "plots")
+    os.makedirs(out, exist_ok=True)
+    made = []
+    plots = [("trajectory_top.png", plot_trajectory_top)]
+    if os.path.exists(os.path.join(run_dir, "trajectory_est.txt")):
+        plots.append(("error_time.png", plot_error_time))
+    if read_csv(os.path.join(run_dir, "dynamic.csv")):
+        plots.append(("dynamic_timeline.png", plot_dynamic_timeline))
+    for name, make in plots:
+        fig = make(run_dir)
+        save(fig, os.path.join(out, name))
+        made.append(name)
+    return out, made
+
+
+def save(fig, path):
+    tmp = path + ".tmp.png"  # written whole, then renamed
+    fig.savefig(tmp)
+    plt.close(fig)
+    os.replace(tmp, path)
+
+
+def number(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return None
+
+
+def report_sweep(sweep_dir, x, y, metric):
+    results = read_csv(os.path.join(sweep_dir, "results.csv"))
+    if not results:
+        raise BadInput(f"{sweep_dir}/results.csv: missing or empty (run the sweep or viqu sweep --collect)")
+    columns = results[0].keys()
+    metric = metric or [c for c in columns if c not in ("id", "scenario", "seed", "exit_code", "status", "wall_s")][-1]
+    for key, what in ((x, "--x"), (y, "--y"), (metric, "--metric")):
+        if key and key not in columns:
+            raise BadInput(f"{sweep_dir}/results.csv: no column '{key}' ({what}); columns: {', '.join(columns)}")
+    if not x:
+        raise BadInput("a sweep report needs --x KEY (a grid key), and --y KEY for a heatmap")
+    out = os.path.join(sweep_dir, "plots")
+    os.makedirs(out, exist_ok=True)
+    safe = metric.replace("/", "_")
+    if y:
+        xs = sorted({r[x] for r in results}, key=lambda v: (number(v) is None, number(v) or 0, v))
+        ys = sorted({r[y] for r in results}, key=lambda v: (number(v) is None, number(v) or 0, v))
+        grid = np.full((len(ys), len(xs)), np.nan)
+        for iy, vy in enumerate(ys):
+            for ix, vx in enumerate(xs):
+                vals = [number(r[metric]) for r in results if r[x] == vx and r[y] == vy]
+                vals = [v for v in vals if v is not None]
+                if vals:
+                    grid[iy, ix] = np.mean(vals)
+        fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+        im = ax.imshow(grid, origin="lower", cmap="viridis", aspect="auto")
+        ax.set_xticks(range(len(xs)))
+        ax.set_xticklabels(xs)
+        ax.set_yticks(range(len(ys)))
+        ax.set_yticklabels(ys)
+        for iy in range(len(ys)):
+            for ix in range(len(xs)):
+                if not np.isnan(grid[iy, ix]):
+                    ax.text(ix, iy, f"{grid[iy, ix]:.3g}", ha="center", va="center", color="w", fontsize=8)
+        ax.set_xlabel(x)
+        ax.set_ylabel(y)
+        fig.colorbar(im, ax=ax, label=f"{metric} (mean over seeds and other keys)")
+        ax.set_title(f"{metric} over {x} and {y}")
+        fig.tight_layout()
+        name = f"heatmap_{safe}.png"
+    else:
+        xs = sorted({r[x] for r in results}, key=lambda v: (number(v) is None, number(v) or 0, v))
+        pos = [number(v) if number(v) is not None else i for i, v in enumerate(xs)]
+        fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+        means, lo, hi = [], [], []
+        for vx, px in zip(xs, pos):
+            vals = [number(r[metric]) for r in results if r[x] == vx]
+            vals = [v for v in vals if v is not None]
+            if vals:
+                ax.plot([px] * len(vals), vals, "o", color="tab:blue", alpha=0.35, ms=4)
+            means.append(np.mean(vals) if vals else np.nan)
+            lo.append(min(vals) if vals else np.nan)
+            hi.append(max(vals) if vals else np.nan)
+        ax.fill_between(pos, lo, hi, color="tab:blue", alpha=0.15, label="min-max over seeds")
+        ax.plot(pos, means, "-o", color="tab:blue", label="mean", gid="mean")
+        if any(number(v) is None for v in xs):
+            ax.set_xticks(pos)
+            ax.set_xticklabels(xs)
+        ax.set_xlabel(x)
+        ax.set_ylabel(metric)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        ax.set_title(f"{metric} over {x}")
+        fig.tight_layout()
+        name = f"line_{safe}.png"
+    save(fig, os.path.join(out, name))
+    return out, [name]
+
+
+def main(argv):
+    p = argparse.ArgumentParser(prog="viqu report", description=__doc__.split("\n")[0])
+    p.add_argument("dir", help="a run folder or a sweep folder")
+    p.add_argument("--x", help="sweep: grid key on the x axis")
+    p.add_argument("--y", help="sweep: grid key on the y axis (heatmap)")
+    p.add_argument("--metric", help="sweep: the metric (default: the last metric column)")
+    a = p.parse_args(argv)
+    try:
+        if not os.path.isdir(a.dir):
+            raise BadInput(f"{a.dir}: not a folder")
+        if os.path.exists(os.path.join(a.dir, "sweep.yaml")):
+            out, made = report_sweep(a.dir, a.x, a.y, a.metric)
+        else:
+            out, made = report_run(a.dir)
+    except BadInput as e:
+        print(f"viqu: {e}", file=sys.stderr)
+        return 2
+    print(f"viqu report: {out}/{{{','.join(made)}}}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
