@@ -11,6 +11,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "apps/lo_run.h"
+#include "apps/overlay_video.h"
 #include "apps/progress.h"
 #include "apps/robot_rig.h"
 #include "apps/run_metrics.h"
@@ -63,33 +64,6 @@ struct Sensors {
   sim::TouchModel touch;
   std::mt19937_64 camera_rng;
   SensorClock imu_clock, joint_clock, camera_clock;
-};
-
-// Writes video.mp4 of the left camera through a temporary name.
-class VideoOutput {
- public:
-  VideoOutput(const std::string& path, double fps, int w, int h) : path_(path), tmp_(TempPathFor(path) + ".mp4") {
-    writer_.open(tmp_, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps, cv::Size(w, h));
-    if (!writer_.isOpened()) throw RunError("cannot open a video writer for " + path + " (OpenCV without an mp4 encoder?)");
-  }
-  ~VideoOutput() {
-    if (!done_) std::remove(tmp_.c_str());
-  }
-  void Add(const cv::Mat& rgb) {
-    cv::cvtColor(rgb, bgr_, cv::COLOR_RGB2BGR);
-    writer_.write(bgr_);
-  }
-  void Finish() {
-    writer_.release();
-    CommitTempFile(tmp_, path_);
-    done_ = true;
-  }
-
- private:
-  std::string path_, tmp_;
-  cv::VideoWriter writer_;
-  cv::Mat bgr_;
-  bool done_ = false;
 };
 
 sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const PinholeIntrinsics& k) {
@@ -176,9 +150,10 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     if (!ropt.depth) throw InputError(s.source_file + ": --record-tum needs depth (sensors.camera.depth: true)");
     tum_recorder = std::make_unique<sim::TumRecorder>(out + "/dataset_tum", renderer.intrinsics());
   }
-  std::unique_ptr<VideoOutput> video;
+  std::unique_ptr<OverlayVideo> video;
   if (opt.video) {
-    video = std::make_unique<VideoOutput>(out + "/video.mp4", s.sensors.camera.rate_hz, ropt.width, ropt.height);
+    video = std::make_unique<OverlayVideo>(out + "/video.mp4", s.sensors.camera.rate_hz, ropt.width, ropt.height);
+    if (slam) slam->SetRecordFeatures(true);
   }
   sim::TrajectoryWriter gt_out(out + "/trajectory_gt.txt");
 
@@ -256,11 +231,12 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       gt_out.Add(gt.T_w_cam);
       gt_cam.push_back(gt.T_w_cam);
       if (lo) lo->AddFrame(t_ns);
+      std::optional<slam::TrackResult> track;
       if (slam) {
-        const slam::TrackResult r = slam->Track(frame, &truth);
-        visual_T_w_body = r.T_w_c * T_cam_body;
-        metrics.track_ms.push_back(r.track_ms);
-        progress.SetNote(slam::TrackStatusName(r.status));
+        track = slam->Track(frame, &truth);
+        visual_T_w_body = track->T_w_c * T_cam_body;
+        metrics.track_ms.push_back(track->track_ms);
+        progress.SetNote(slam::TrackStatusName(track->status));
       }
       metrics.path_length_m += (gt.T_w_body.p_w_x - last_p).head<2>().norm();
       last_p = gt.T_w_body.p_w_x;
@@ -273,7 +249,10 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
         tum_recorder->AddFrame(frame);
         tum_recorder->AddGroundTruth(gt);
       }
-      if (video) video->Add(frame.left_rgb);
+      if (video) {
+        const double error_m = track ? (track->T_w_c.translation() - gt.T_w_cam.p_w_x).norm() : -1;
+        video->Add(frame, track ? &*track : nullptr, error_m);
+      }
     }
     if (world.TrunkTiltRad() > kFallTiltRad || world.TrunkTouchesGround()) metrics.fell = true;
     if (t_ns >= end_ns || (metrics.fell && !s.robot.allow_fall)) break;

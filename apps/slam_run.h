@@ -33,6 +33,9 @@ class SlamRun {
   SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
           const Eigen::Isometry3d& world_from_first_camera = Eigen::Isometry3d::Identity());
 
+  // Fill TrackResult::marks (the overlay video).
+  void SetRecordFeatures(bool on) { system_.SetRecordFeatures(on); }
+
   // `truth` (live runs; null offline) scores the dynamic-object decisions in dynamic.csv.
   slam::TrackResult Track(const StereoFrame& frame, const std::vector<ObjectTruth>* truth = nullptr);
 

@@ -30,6 +30,7 @@ struct SlamSystem::Impl {
   std::unique_ptr<LocalMapper> mapper;
   std::unique_ptr<DynamicObjects> dynamic;
   SlamStats stats;
+  bool record_features = false;  // fill TrackResult::marks
 };
 
 SlamSystem::SlamSystem(const SlamSettings& settings, const Eigen::Isometry3d& world_from_first_camera)
@@ -122,6 +123,24 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
   r.stereo_points = static_cast<int>(std::count_if(features->depth.begin(), features->depth.end(), [](float d) { return d > 0; }));
   r.features_dropped = r.features - kept;
   r.objects = m.dynamic->reports();
+  if (m.record_features) {
+    const std::vector<uint8_t>& fates = m.tracker.LastFeatureFates();
+    r.marks.reserve(features->size());
+    size_t j = 0;  // index among the tracked (kept) features
+    for (size_t i = 0; i < features->size(); ++i) {
+      FeatureMark mark;
+      mark.x = features->keypoints[i].pt.x;
+      mark.y = features->keypoints[i].pt.y;
+      if (!keep[i]) {
+        mark.fate = FeatureFate::kDropped;
+      } else {
+        const uint8_t f = j < fates.size() ? fates[j] : 0;
+        mark.fate = f == 2 ? FeatureFate::kNew : f == 1 ? FeatureFate::kTracked : FeatureFate::kUnmatched;
+        ++j;
+      }
+      r.marks.push_back(mark);
+    }
+  }
   r.dynamic_ms = dynamic_ms;
   r.track_ms = ms_since(t0);
   // Mapping after the keyframe: inline in sync mode (not counted as tracking time), queued in
@@ -135,6 +154,8 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
   m.stats.dynamic_ms.push_back(r.dynamic_ms);
   return r;
 }
+
+void SlamSystem::SetRecordFeatures(bool on) { impl_->record_features = on; }
 
 void SlamSystem::Finish() {
   if (impl_->mapper) impl_->mapper->WaitIdle();

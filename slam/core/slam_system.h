@@ -23,6 +23,18 @@ enum class TrackStatus {
 };
 const char* TrackStatusName(TrackStatus s);
 
+// What became of one feature of a frame (TrackResult::marks, for overlays).
+enum class FeatureFate : uint8_t {
+  kUnmatched,  // no map point (or an outlier)
+  kTracked,    // an inlier of a map point
+  kNew,        // a new map point was made from it (keyframes)
+  kDropped,    // on an object judged dynamic: removed before tracking
+};
+struct FeatureMark {
+  float x = 0, y = 0;  // left image (px)
+  FeatureFate fate = FeatureFate::kUnmatched;
+};
+
 struct TrackResult {
   int64_t t_ns = 0;
   Eigen::Isometry3d T_w_c = Eigen::Isometry3d::Identity();  // left camera in the SLAM world
@@ -37,6 +49,7 @@ struct TrackResult {
   double excluded_share = 0;     // share of inliers on movable objects (judged with a pose without them above
                                  // dynamic.adaptive.static_pose_min_share)
   std::vector<ObjectReport> objects;  // movable objects in the frame's masks
+  std::vector<FeatureMark> marks;     // every feature's fate; only with SetRecordFeatures(true)
 };
 
 struct SlamStats {
@@ -70,6 +83,9 @@ class SlamSystem {
   // constant-velocity guess in tracking and carries the pose while vision fails (lost frames,
   // a new map segment after loss starts from it). Used for one frame.
   void SetMotionPrior(const Eigen::Isometry3d& T_cur_last);
+
+  // Fill TrackResult::marks (for overlay videos; off by default).
+  void SetRecordFeatures(bool on);
 
   // Waits for the mapping thread (realtime mode) to finish its queue.
   void Finish();

@@ -186,6 +186,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   cur_ = Frame();
   cur_.t_ns = frame.t_ns;
   cur_.Reset(features);
+  new_point_.assign(cur_.size(), 0);
   ++frame_index_;
   last_t_ns_ = frame.t_ns;
 
@@ -204,6 +205,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     }
     r.T_w_c = cur_.T_c_w.inverse();
     last_ = cur_;
+    RecordFates();
     return r;
   }
 
@@ -253,7 +255,20 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   cur_.ForgetOutliers();
   r.T_w_c = cur_.T_c_w.inverse();
   last_ = cur_;
+  RecordFates();
   return r;
+}
+
+void Tracker::RecordFates() {
+  last_fates_.assign(last_.size(), 0);
+  for (size_t i = 0; i < last_.size(); ++i) {
+    const MapPoint* p = last_.points[i];
+    if (new_point_[i]) {
+      last_fates_[i] = 2;
+    } else if (p && !p->bad && p->id >= 0 && !last_.outlier[i]) {
+      last_fates_[i] = 1;
+    }
+  }
 }
 
 bool Tracker::Initialise() {
@@ -274,6 +289,7 @@ bool Tracker::Initialise() {
     Map::AddObservation(p, kf, static_cast<int>(i));
     p->UpdateFromObservations();
     cur_.points[i] = p;
+    new_point_[i] = 1;
   }
   initialised_ = true;
   lost_ = false;
@@ -568,6 +584,7 @@ KeyFrame* Tracker::CreateKeyFrame(LocalMapper* mapper) {
     Map::AddObservation(p, kf, i);
     p->UpdateFromObservations();
     cur_.points[i] = p;
+    new_point_[i] = 1;
     created.push_back(p);
   }
   if (mapper) mapper->AddRecentPoints(created);

@@ -47,6 +47,9 @@ class Tracker {
                                     double* excluded_share);
   // The pose of the frame just tracked (map to camera).
   Eigen::Isometry3d LastPose() const { return last_.T_c_w; }
+  // Per feature of the last Track()'s `features`: 0 unmatched (or an outlier), 1 tracked (an
+  // inlier of a map point), 2 a map point made from it in this frame (a new keyframe's).
+  const std::vector<uint8_t>& LastFeatureFates() const { return last_fates_; }
   // Positions of the local map's good points (map frame, m) after the last Track().
   std::vector<Eigen::Vector3d> LocalMapPointPositions() const;
   KeyFrame* TakePendingKeyFrame() {
@@ -63,6 +66,11 @@ class Tracker {
   }
 
   bool HasCamera() const { return have_camera_; }
+
+ private:
+  void RecordFates();  // fills last_fates_ from last_ at the end of Track()
+
+ public:
   const StereoCamera& camera() const { return cam_; }
   void SetCamera(const StereoFrame& frame);
 
@@ -101,6 +109,8 @@ class Tracker {
   std::vector<std::unique_ptr<MapPoint>> temporary_;  // visual-odometry points of the last frame
   std::vector<KeyFrame*> local_keyframes_;
   std::vector<MapPoint*> local_points_;
+  std::vector<uint8_t> new_point_;   // per feature of the current frame: a map point was made from it
+  std::vector<uint8_t> last_fates_;  // LastFeatureFates()
 };
 
 }  // namespace viqu::slam
