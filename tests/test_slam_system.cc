@@ -122,6 +122,32 @@ TEST(SlamSystem, TracksASyntheticWallSequenceToTheKnownPath) {
   EXPECT_EQ(system.Stats().lost_frames, 0);
 }
 
+// Mapping on its own thread (mapping.mode: realtime) with a keyframe every few frames, so that
+// the mapper works while the tracker tracks (the TSan build runs this: scripts/sanitize.sh tsan).
+TEST(SlamSystem, RealtimeMappingTracksTheKnownPath) {
+  slam::SlamSettings settings;
+  settings.mapping.mode = "realtime";
+  settings.tracking.keyframe_min_frames = 2;
+  settings.tracking.keyframe_max_frames = 3;
+  settings.tracking.close_tracked_max = 100000;      // a keyframe whenever a near point is untracked,
+  settings.tracking.close_points_min = 0;            // every 2 frames at most
+  settings.mapping.redundant_keyframe_ratio = 1.0;   // and none culled
+  slam::SlamSystem system(settings);
+  double worst_m = 0;
+  for (int k = 0; k < kFrames; ++k) {
+    const slam::TrackResult r = system.Track(MakeFrame(k));
+    ASSERT_NE(r.status, slam::TrackStatus::kLost) << "frame " << k;
+    worst_m = std::max(worst_m, (r.T_w_c.translation() - TruePose(k).translation()).norm());
+  }
+  system.Finish();
+  const slam::SlamStats st = system.Stats();
+  std::printf("realtime mapping: worst position error %.2f mm, %d keyframes, %zu local BAs\n", worst_m * 1e3,
+              st.keyframes, st.local_ba_ms.size());
+  EXPECT_LT(worst_m, 0.003);  // the sync run's bound
+  EXPECT_GE(st.keyframes, 10);
+  EXPECT_GE(st.local_ba_ms.size(), 5u);
+}
+
 // Frame k with its images blacked out: a camera outage (the true camera keeps moving).
 StereoFrame BlackFrame(int k) {
   StereoFrame f = MakeFrame(k);
