@@ -3,6 +3,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <cerrno>
 #include <filesystem>
 
 #include "common/errors.h"
@@ -31,7 +32,10 @@ int RunReport(const std::string& dir, const std::vector<std::string>& args) {
   pid_t pid = -1;
   if (posix_spawn(&pid, kPython, nullptr, nullptr, argv.data(), environ) != 0) throw RunError("cannot start " + tool);
   int status = 0;
-  if (::waitpid(pid, &status, 0) != pid) throw RunError("lost the report process");
+  pid_t got;
+  while ((got = ::waitpid(pid, &status, 0)) == -1 && errno == EINTR) {
+  }  // a stop signal reaches the tool too (same process group); wait for it to end
+  if (got != pid) throw RunError("lost the report process");
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 

@@ -100,7 +100,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     resolved.slam.dynamic = DynamicConfig{d.method, d.alpha, d.beta, d.gamma, d.th_d, d.window_s, d.window_n};
   }
   // Everything is checked: from here on the run writes its folder (common/run_folder.h).
-  RunFolderWriter folder(opt.out_dir.empty() ? "runs/" + s.name : opt.out_dir, opt.force, opt.command_line);
+  const std::string out_dir = opt.out_dir.empty() ? "runs/" + s.name : opt.out_dir;
+  RunFolderWriter folder(out_dir, opt.force, opt.command_line);
+  for (const std::string& input : {s.world, s.robot.model, s.slam.config}) RequireOutsideOutput(folder.final_path(), input);
   const std::string& out = folder.path();
   WriteFileAtomic(out + "/scenario.yaml", ScenarioToYaml(resolved));
 

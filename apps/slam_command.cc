@@ -112,15 +112,11 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   }
 
   const std::string out_dir = args.out_dir.empty() ? DefaultOutDir(args.dataset_dir) : args.out_dir;
-  {
-    // The output folder is replaced as a whole: it must not hold the dataset being read.
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path o = fs::weakly_canonical(out_dir, ec), d = fs::weakly_canonical(args.dataset_dir, ec);
-    const auto [mo, md] = std::mismatch(o.begin(), o.end(), d.begin(), d.end());
-    if (mo == o.end()) throw InputError("--out " + out_dir + " holds the dataset " + args.dataset_dir + "; choose another output folder");
-  }
   RunFolderWriter folder(out_dir, args.force, command_line);
+  // The output folder is replaced as a whole: it must not hold anything the replay reads.
+  for (const std::string& input : {args.dataset_dir, args.masks_dir, args.camera, args.config}) {
+    RequireOutsideOutput(folder.final_path(), input);
+  }
   const std::string& out = folder.path();
   char camera_line[512];
   std::snprintf(camera_line, sizeof camera_line, "# camera calibration: %s (fx %g, fy %g, cx %g, cy %g, %dx%d)\n",

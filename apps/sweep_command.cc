@@ -152,7 +152,7 @@ int RunPoints(const SweepSpec& spec, const std::vector<SweepPoint>& points, cons
     PointOutcome o = ReadPointOutcome(spec, dir + "/points/" + p.id);
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     o.exit_code = std::to_string(code);
-    if (r.timed_out) {
+    if (r.timed_out && o.status != "ok") {  // a run that completed before the SIGTERM counts as ok
       o.status = "timeout";
     } else if (o.status == "missing") {
       o.status = "failed";
@@ -183,6 +183,15 @@ int RunSweepCommand(const SweepArgs& args, const std::string& viqu_exe) {
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("--out " + dir + " exists and is not a folder");
     if (fs::exists(dir + "/sweep.yaml", ec) && !args.resume && args.emit.empty()) {
       throw InputError("--out " + dir + " holds a sweep already: pass --resume to finish it, or choose another folder");
+    }
+    // A sweep folder belongs to one sweep: resuming (or emitting) with another grid would put old
+    // runs under new values.
+    if (fs::exists(dir + "/sweep.yaml", ec)) {
+      const SweepSpec stored = LoadSweepSpec(dir + "/sweep.yaml");
+      if (SweepSpecToYaml(stored) != SweepSpecToYaml(spec)) {
+        throw InputError(args.sweep_file + ": differs from the sweep that " + dir + " holds (" + dir +
+                         "/sweep.yaml); use another --out");
+      }
     }
     fs::create_directories(dir + "/points", ec);
     fs::create_directories(dir + "/logs", ec);

@@ -61,7 +61,11 @@ SweepSpec LoadSweepSpec(const std::string& path) {
     const fs::path p = fs::path(file).is_absolute() ? fs::path(file) : base / file;
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) src.Fail(key, scenarios[i], "scenario file not found: " + p.lexically_normal().string());
-    spec.scenarios.push_back(p.lexically_normal().string());
+    const std::string abs = fs::weakly_canonical(p, ec).string();
+    if (std::find(spec.scenarios.begin(), spec.scenarios.end(), abs) != spec.scenarios.end()) {
+      src.Fail(key, scenarios[i], "scenario " + abs + " is listed twice");
+    }
+    spec.scenarios.push_back(abs);
   }
 
   if (top.Has("seeds")) {
@@ -121,10 +125,12 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   top.RejectUnknownKeys();
 
   size_t points = spec.scenarios.size() * spec.seeds.size();
-  for (const auto& g : spec.grid) points *= g.second.size();
+  for (const auto& g : spec.grid) {
+    points *= g.second.size();
+    if (points > kMaxPoints) break;  // before the product can wrap around
+  }
   if (points > kMaxPoints) {
-    throw InputError(path + ": the sweep expands to " + std::to_string(points) + " points, more than " +
-                     std::to_string(kMaxPoints));
+    throw InputError(path + ": the sweep expands to more than " + std::to_string(kMaxPoints) + " points");
   }
   // Every point's --set list against its scenario: a key or value `viqu run` would reject is
   // reported now, with the point, before anything runs.

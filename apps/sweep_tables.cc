@@ -90,6 +90,7 @@ std::vector<std::string> WriteSweepTables(const SweepSpec& spec, const std::vect
   results += ",exit_code,status,wall_s\n";
 
   // Grid points (scenario and grid values) in first-seen order, with their points.
+  // Grouped by scenario file (two files may share a name) and grid values.
   std::vector<std::string> group_keys;
   std::map<std::string, std::vector<size_t>> groups;
   for (size_t i = 0; i < points.size(); ++i) {
@@ -101,6 +102,7 @@ std::vector<std::string> WriteSweepTables(const SweepSpec& spec, const std::vect
       row += "," + CsvField(v);
       key += "," + CsvField(v);
     }
+    key = p.scenario + "\n" + key;  // the file first; the part after the newline is printed
     for (const std::string& m : o.metrics) row += "," + CsvField(m);
     row += "," + o.exit_code + "," + o.status + "," + o.wall_s + "\n";
     results += row;
@@ -121,12 +123,13 @@ std::vector<std::string> WriteSweepTables(const SweepSpec& spec, const std::vect
     const std::vector<size_t>& members = groups[key];
     int ok = 0;
     for (size_t i : members) ok += outcomes[i].status == "ok" ? 1 : 0;
-    summary += key + "," + std::to_string(members.size()) + "," + std::to_string(ok);
+    summary += key.substr(key.find('\n') + 1) + "," + std::to_string(members.size()) + "," + std::to_string(ok);
     for (size_t m = 0; m < spec.metrics.size(); ++m) {
       std::vector<double> xs;
+      // Only runs that ended well count: a robot that fell early has a short, flattering trajectory.
       for (size_t i : members) {
         double x;
-        if (ParseNumber(outcomes[i].metrics[m], &x)) xs.push_back(x);
+        if (outcomes[i].status == "ok" && ParseNumber(outcomes[i].metrics[m], &x)) xs.push_back(x);
       }
       if (xs.empty()) {
         summary += ",,,,,0";

@@ -22,7 +22,8 @@ struct PointOutcome {
 PointOutcome ReadPointOutcome(const SweepSpec& spec, const std::string& run_dir);
 
 // Writes DIR/results.csv and DIR/summary.csv (atomically) and returns the lines naming the best
-// grid point per metric (by mean over seeds; min or max as spec.maximise says).
+// grid point per metric (by mean over seeds; min or max as spec.maximise says). The summary's
+// statistics and the best point use the points with status ok only; results.csv has every one.
 std::vector<std::string> WriteSweepTables(const SweepSpec& spec, const std::vector<SweepPoint>& points,
                                           const std::vector<PointOutcome>& outcomes, const std::string& dir);
 

@@ -35,7 +35,13 @@ void CommitTempDirectory(const std::string& from, const std::string& to) {
     if (ec) throw RunError("cannot move the old " + to + " aside: " + ec.message());
   }
   fs::rename(from, to, ec);
-  if (ec) throw RunError("cannot rename " + from + " to " + to + ": " + ec.message());
+  if (ec) {
+    const std::string why = ec.message();
+    std::error_code back;
+    if (had_old) fs::rename(old_dir, to, back);  // the old one back in place
+    throw RunError("cannot rename " + from + " to " + to + ": " + why + (had_old && back ? "; the previous " + to +
+                   " is in " + old_dir : ""));
+  }
   if (had_old) fs::remove_all(old_dir, ec);
 }
 

@@ -21,10 +21,28 @@ namespace {
 constexpr const char* kPartialInfix = ".partial-";
 constexpr int kMarkerFormat = 1;  // version of the markers' layout
 
-// Files a viqu run writes at its top level before markers existed: a folder holding one of them
-// is a run folder of ours (an older one), so replacing it destroys nothing of the user's.
-const char* const kRunFiles[] = {"scenario.yaml", "metrics.json", "slam_settings.yaml", "trajectory_gt.txt",
-                                 "trajectory_est.txt"};
+// Everything a run or a replay writes at a folder's top level: a folder that holds nothing else
+// (and a marker or a metrics.json) is ours to replace without --force.
+const char* const kOwnedNames[] = {"scenario.yaml", "metrics.json", "slam_settings.yaml", "trajectory_gt.txt",
+                                   "trajectory_est.txt", "trajectory_lo.txt", "tracking.csv", "dynamic.csv",
+                                   "lo.csv", "slip.csv", "dataset", "dataset_tum", "video.mp4", "plots",
+                                   "run_complete.json", "run_incomplete.json"};
+
+// Whether every entry of `dir` is one a run writes (or a temporary of one), with a marker or a
+// metrics.json among them.
+bool HoldsOnlyRunOutputs(const fs::path& dir) {
+  std::error_code ec;
+  bool ours = false;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.find(".tmp.") != std::string::npos) continue;
+    bool known = false;
+    for (const char* n : kOwnedNames) known = known || name == n;
+    if (!known) return false;
+    ours = ours || name == "metrics.json" || name == kRunCompleteMarker || name == kRunIncompleteMarker;
+  }
+  return ours && !ec;
+}
 
 // Every regular file under `dir`, relative to it, sorted (the marker lists them deterministically).
 std::vector<std::pair<std::string, uintmax_t>> ListFiles(const std::string& dir) {
@@ -42,19 +60,33 @@ bool ProcessAlive(long pid) {
   return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
 }
 
-// Removes DIR.partial-PID folders left by runs whose process no longer exists (killed runs).
+// Cleans up after runs into DIR whose process no longer exists: a DIR.partial-PID folder is
+// removed, unless it holds a completion marker and DIR is missing (the run was killed between
+// the two renames of the swap): then it is the run's result and is put in place. A DIR.old.PID
+// folder (the previous run, moved aside by a swap that never finished) goes back to DIR when DIR
+// is missing, else it is removed.
 void RemoveStalePartials(const fs::path& final_dir) {
   std::error_code ec;
   const fs::path parent = final_dir.parent_path().empty() ? fs::path(".") : final_dir.parent_path();
-  const std::string prefix = final_dir.filename().string() + kPartialInfix;
-  for (const fs::directory_entry& e : fs::directory_iterator(parent, ec)) {
-    const std::string name = e.path().filename().string();
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string pid_text = name.substr(prefix.size());
-    if (pid_text.empty() || !std::all_of(pid_text.begin(), pid_text.end(), ::isdigit)) continue;
-    if (ProcessAlive(std::stol(pid_text))) continue;
-    std::error_code rm;
-    fs::remove_all(e.path(), rm);
+  for (const std::string& infix : {std::string(kPartialInfix), std::string(".old.")}) {
+    const std::string prefix = final_dir.filename().string() + infix;
+    std::vector<fs::path> stale;
+    for (const fs::directory_entry& e : fs::directory_iterator(parent, ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string pid_text = name.substr(prefix.size());
+      if (pid_text.empty() || pid_text.size() > 9 || !std::all_of(pid_text.begin(), pid_text.end(), ::isdigit)) continue;
+      if (!ProcessAlive(std::stol(pid_text))) stale.push_back(e.path());
+    }
+    for (const fs::path& p : stale) {
+      std::error_code rm;
+      const bool finished = infix == ".old." || fs::exists(p / kRunCompleteMarker, rm);
+      if (finished && !fs::exists(final_dir, rm)) {
+        fs::rename(p, final_dir, rm);
+        if (!rm) continue;
+      }
+      fs::remove_all(p, rm);
+    }
   }
 }
 
@@ -105,10 +137,10 @@ RunFolderWriter::RunFolderWriter(const std::string& final_dir, bool force, const
   if (IsSameOrAncestor(dir, fs::current_path(ec))) {
     throw InputError("output folder " + final_ + " is the current folder or holds it; a run replaces its folder as a whole");
   }
-  if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !LooksLikeRunFolder(final_) && !force) {
+  if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !HoldsOnlyRunOutputs(dir) && !force) {
     throw InputError("output folder " + final_ +
-                     " is not empty and holds no viqu run; a run replaces its folder as a whole: choose another --out "
-                     "or pass --force");
+                     " holds files that are no viqu run's outputs; a run replaces its folder as a whole: choose another "
+                     "--out or pass --force");
   }
   if (!dir.parent_path().empty()) {
     fs::create_directories(dir.parent_path(), ec);
@@ -138,17 +170,28 @@ void RunFolderWriter::Interrupted(const std::string& reason) {
 }
 
 void RunFolderWriter::SwapIn() {
-  CommitTempDirectory(partial_, final_);
+  // From here the partial folder holds a finished run: whatever happens, it is not deleted.
   done_ = true;
+  CommitTempDirectory(partial_, final_);
+}
+
+void RequireOutsideOutput(const std::string& out_dir, const std::string& input) {
+  if (input.empty()) return;
+  if (IsSameOrAncestor(fs::path(out_dir), fs::path(input))) {
+    throw InputError("output folder " + out_dir + " holds the input " + input +
+                     "; a run replaces its folder as a whole: choose another --out");
+  }
 }
 
 bool LooksLikeRunFolder(const std::string& dir) {
   std::error_code ec;
   if (fs::exists(fs::path(dir) / kRunCompleteMarker, ec) || fs::exists(fs::path(dir) / kRunIncompleteMarker, ec)) return true;
-  for (const char* f : kRunFiles) {
-    if (fs::exists(fs::path(dir) / f, ec)) return true;
+  // A run written before markers existed: its metrics beside its resolved inputs.
+  const fs::path d(dir);
+  if (fs::exists(d / "metrics.json", ec) && (fs::exists(d / "scenario.yaml", ec) || fs::exists(d / "slam_settings.yaml", ec))) {
+    return true;
   }
-  return fs::path(dir).filename().string().find(kPartialInfix) != std::string::npos;
+  return d.filename().string().find(kPartialInfix) != std::string::npos;
 }
 
 bool IsCompleteRunFolder(const std::string& dir, std::string* why) {

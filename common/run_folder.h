@@ -50,6 +50,10 @@ class RunFolderWriter {
   bool done_ = false;
 };
 
+// Throws InputError when `input` (a file or folder the run reads while it works) lies in
+// `out_dir`, which the run replaces as a whole. Empty `input`: nothing to check.
+void RequireOutsideOutput(const std::string& out_dir, const std::string& input);
+
 // Whether `dir` holds a complete run: the completion marker is there and every file it lists is
 // there with its size. Otherwise false with the reason in `why` (when given).
 bool IsCompleteRunFolder(const std::string& dir, std::string* why = nullptr);

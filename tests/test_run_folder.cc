@@ -138,6 +138,13 @@ TEST(RunFolder, RefusesBadOutputFoldersBeforeAnyWork) {
     forced.Complete(0);
   }
   EXPECT_FALSE(fs::exists(root / "mine" / "notes.txt"));
+  // A folder that holds a scenario file and notes of the user's is no run folder: refused.
+  WriteText(root / "experiment" / "scenario.yaml", "name: x\n");
+  WriteText(root / "experiment" / "notes.md", "keep me");
+  EXPECT_THROW(RunFolderWriter((root / "experiment").string(), false, ""), InputError);
+  // Inputs inside the output folder are refused (the folder is replaced as a whole).
+  EXPECT_THROW(RequireOutsideOutput((root / "experiment").string(), (root / "experiment" / "scenario.yaml").string()), InputError);
+  EXPECT_NO_THROW(RequireOutsideOutput((root / "experiment").string(), (root / "mine" / "x.yaml").string()));
   // The current folder (or one above it) is never replaced, forced or not.
   EXPECT_THROW(RunFolderWriter(fs::current_path().string(), true, ""), InputError);
   EXPECT_THROW(RunFolderWriter(fs::current_path().parent_path().string(), true, ""), InputError);
@@ -168,6 +175,32 @@ TEST(RunFolder, StalePartialFoldersOfDeadProcessesAreRemoved) {
   EXPECT_TRUE(fs::exists(alive));
   // A partial folder is recognisably incomplete to every reader.
   EXPECT_THROW(RequireNotInIncompleteRun((alive / "scenario.yaml").string()), InputError);
+}
+
+// A run killed between the swap's two renames: DIR is missing, its result is complete in the
+// partial folder (or the previous run sits in DIR.old.PID). The next run puts it back, not away.
+TEST(RunFolder, ASwapCutShortIsRepairedByTheNextRun) {
+  const fs::path root = Fresh("swap_cut");
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ::waitpid(dead, nullptr, 0);
+  {
+    RunFolderWriter w((root / "run").string(), false, "finished");
+    WriteText(fs::path(w.path()) / "metrics.json", "{\"finished\": 1}\n");
+    w.Complete(0);
+  }
+  fs::rename(root / "run", root / ("run.partial-" + std::to_string(dead)));
+  {
+    // A run into another folder beside it leaves it alone; one into DIR repairs it first, and a
+    // failed one (no Complete) keeps the repaired result.
+    RunFolderWriter w((root / "run").string(), false, "failed");
+  }
+  EXPECT_TRUE(IsCompleteRunFolder((root / "run").string()));
+  EXPECT_EQ(ReadText(root / "run" / "metrics.json"), "{\"finished\": 1}\n");
+  fs::rename(root / "run", root / ("run.old." + std::to_string(dead)));
+  { RunFolderWriter w((root / "run").string(), false, "failed"); }
+  EXPECT_TRUE(IsCompleteRunFolder((root / "run").string()));
+  EXPECT_EQ(Debris(root), 0);
 }
 
 // ---- Through the program -------------------------------------------------------------------

@@ -90,8 +90,15 @@ TEST(Sweep, ResumeRerunsOnlyTheIncompletePointAndSlurmGivesTheSameResults) {
   EXPECT_TRUE(IsCompleteRunFolder(p2.string()));
   EXPECT_FALSE(fs::exists(fs::path(out) / "points" / "p0002.partial-999999999"));
   EXPECT_EQ(ResultsWithoutWallTime(fs::path(out) / "results.csv"), uninterrupted);
-  // Without --resume, a sweep folder is not overwritten.
+  // Without --resume, a sweep folder is not overwritten; with another grid it is not resumed.
   EXPECT_EQ(RunViqu("sweep " + (dir / "s.yaml").string() + " --out " + out).exit_code, 2);
+  std::ofstream(dir / "other.yaml") << "scenarios: [" + kScenario + "]\nseeds: [1, 2]\n"
+                                       "grid: {sensors.camera.noise_std: [2, 8]}\n"
+                                       "fixed: {sensors.camera.width: 320, sensors.camera.height: 240, slam.mode: visual, "
+                                       "duration_s: 0.5}\nmetrics: [ate.rmse_m, tracking.frames, path_length_m]\n";
+  const testing::ProgramResult other = RunViqu("sweep " + (dir / "other.yaml").string() + " --out " + out + " --resume");
+  EXPECT_EQ(other.exit_code, 2) << other.output;
+  EXPECT_NE(other.output.find("differs from the sweep"), std::string::npos) << other.output;
 
   // The Slurm array, every task run by hand, then --collect: the same results.
   const std::string slurm = (dir / "slurm").string();

@@ -128,7 +128,8 @@ TEST_F(SweepTest, TablesComeFromTheRunFoldersAlone) {
             "{\"ate\": {\"rmse_m\": " + std::to_string(ate[i]) + "}, \"dynamic\": {\"recall\": 0.5},"
             " \"timing\": {\"wall_time_s\": 12.5}}\n", 0);
   }
-  MakeRun(dir_ / "points" / points[4].id, "{\"robot\": {\"fell\": true}}\n", 1);
+  // The robot fell early in the failed run: a short, flattering ATE that must not count.
+  MakeRun(dir_ / "points" / points[4].id, "{\"robot\": {\"fell\": true}, \"ate\": {\"rmse_m\": 0.001}}\n", 1);
   std::vector<PointOutcome> outcomes;
   for (const SweepPoint& p : points) outcomes.push_back(ReadPointOutcome(spec, (dir_ / "points" / p.id).string()));
   EXPECT_EQ(outcomes[0].status, "ok");
@@ -142,7 +143,7 @@ TEST_F(SweepTest, TablesComeFromTheRunFoldersAlone) {
   EXPECT_EQ(results[0], (std::vector<std::string>{"id", "scenario", "seed", "sensors.camera.noise_std", "ate.rmse_m",
                                                   "dynamic.recall", "exit_code", "status", "wall_s"}));
   EXPECT_EQ(results[1], (std::vector<std::string>{"p0000", "static_room", "1", "1", "0.100000", "0.5", "0", "ok", "12.5"}));
-  EXPECT_EQ(results[5], (std::vector<std::string>{"p0004", "static_room", "2", "4", "", "", "1", "failed", ""}));
+  EXPECT_EQ(results[5], (std::vector<std::string>{"p0004", "static_room", "2", "4", "0.001", "", "1", "failed", ""}));
   EXPECT_EQ(results[6], (std::vector<std::string>{"p0005", "static_room", "3", "4", "", "", "", "missing", ""}));
 
   const auto summary = ReadCsv(dir_ / "summary.csv");

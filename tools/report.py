@@ -47,23 +47,48 @@ def read_tum(path):
             if not s or s.startswith("#"):
                 continue
             parts = s.split()
-            if len(parts) != 8:
-                raise BadInput(f"{path}:{n}: expected 8 numbers 't tx ty tz qx qy qz qw'")
-            rows.append([float(x) for x in parts[:4]])
+            try:
+                if len(parts) != 8:
+                    raise ValueError
+                rows.append([float(x) for x in parts[:4]])
+            except ValueError:
+                raise BadInput(f"{path}:{n}: expected 8 numbers 't tx ty tz qx qy qz qw'") from None
     a = np.array(rows, dtype=float).reshape(-1, 4)
     return a[:, 0], a[:, 1:4]
 
 
-def read_csv(path):
+def read_csv(path, numeric=()):
+    """Rows of a CSV file as dicts ([] when absent); the `numeric` columns must be numbers."""
     if not os.path.exists(path):
         return []
     with open(path) as f:
-        return list(csv.DictReader(f))
+        rows = list(csv.DictReader(f))
+    for n, r in enumerate(rows, 2):
+        for c in numeric:
+            try:
+                float(r[c])
+            except (KeyError, TypeError, ValueError):
+                raise BadInput(f"{path}:{n}: column '{c}' is not a number") from None
+    return rows
+
+
+def read_scenario(run_dir):
+    """scenario.yaml as a dict; {} for a replay's folder, which has none."""
+    path = os.path.join(run_dir, "scenario.yaml")
+    if not os.path.exists(path):
+        return {}
+    try:
+        with open(path) as f:
+            return yaml.safe_load(f) or {}
+    except yaml.YAMLError as e:
+        raise BadInput(f"{path}: {e}") from None
 
 
 def associate(t_est, t_gt):
     """Index pairs (i, j): each estimate stamp with the nearest ground-truth stamp within 0.02 s."""
     pairs = []
+    if len(t_gt) == 0:
+        return pairs
     for i, t in enumerate(t_est):
         j = int(np.argmin(np.abs(t_gt - t)))
         if abs(t_gt[j] - t) <= MAX_ASSOC_S:
@@ -96,26 +121,37 @@ def aligned_errors(est, gt):
 
 
 def require_complete_run(run_dir):
+    """As viqu's readers: the completion marker, and every file it lists with its size."""
     marker = os.path.join(run_dir, "run_complete.json")
-    if not os.path.exists(marker):
-        why = "no completion marker run_complete.json"
-        inc = os.path.join(run_dir, "run_incomplete.json")
-        if os.path.exists(inc):
-            with open(inc) as f:
-                why = "interrupted: " + json.load(f).get("reason", "")
-        raise BadInput(f"{run_dir}: not a complete run folder: {why}")
+    try:
+        if not os.path.exists(marker):
+            why = "no completion marker run_complete.json"
+            inc = os.path.join(run_dir, "run_incomplete.json")
+            if os.path.exists(inc):
+                with open(inc) as f:
+                    why = "interrupted: " + json.load(f).get("reason", "")
+            raise BadInput(f"{run_dir}: not a complete run folder: {why}")
+        with open(marker) as f:
+            files = json.load(f)["files"]
+        for entry in files:
+            p = os.path.join(run_dir, entry["path"])
+            if not os.path.isfile(p):
+                raise BadInput(f"{run_dir}: not a complete run folder: {entry['path']} is missing")
+            if os.path.getsize(p) != entry["bytes"]:
+                raise BadInput(f"{run_dir}: not a complete run folder: {entry['path']} has changed since the run")
+    except (ValueError, KeyError, TypeError) as e:
+        raise BadInput(f"{marker}: unreadable ({e})") from None
 
 
 def plot_trajectory_top(run_dir):
     """The top-view figure (returned for tests; the caller saves it)."""
     gt = read_tum(os.path.join(run_dir, "trajectory_gt.txt"))
-    if gt is None:
-        raise BadInput(f"{run_dir}/trajectory_gt.txt: missing")
     est = read_tum(os.path.join(run_dir, "trajectory_est.txt"))
     lo = read_tum(os.path.join(run_dir, "trajectory_lo.txt"))
+    if gt is None and est is None:
+        raise BadInput(f"{run_dir}: no trajectory_gt.txt and no trajectory_est.txt")
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
-    with open(os.path.join(run_dir, "scenario.yaml")) as f:
-        scenario = yaml.safe_load(f) or {}
+    scenario = read_scenario(run_dir)
     for k, ob in enumerate(scenario.get("obstacles") or []):
         path = np.array(ob.get("path") or [], dtype=float).reshape(-1, 2)
         if len(path) == 0:
@@ -123,10 +159,12 @@ def plot_trajectory_top(run_dir):
         ax.plot(path[:, 0], path[:, 1], "--", color="0.6", lw=1, label="obstacle paths" if k == 0 else None)
         ax.plot(path[0, 0], path[0, 1], "s", color="0.6", ms=4)
         ax.annotate(ob.get("name", ""), path[0], fontsize=8, color="0.4")
-    ax.plot(gt[1][:, 0], gt[1][:, 1], "k-", lw=2, label="ground truth", gid="gt")
+    if gt is not None:
+        ax.plot(gt[1][:, 0], gt[1][:, 1], "k-", lw=2, label="ground truth", gid="gt")
     if est is not None:
         ax.plot(est[1][:, 0], est[1][:, 1], "-", color="tab:blue", lw=1.2, label="SLAM estimate", gid="est")
-        status = {round(float(r["t_s"]), 6): r["status"] for r in read_csv(os.path.join(run_dir, "tracking.csv"))}
+        status = {round(float(r["t_s"]), 6): r["status"]
+                  for r in read_csv(os.path.join(run_dir, "tracking.csv"), numeric=("t_s",))}
         for name, style, label in (("lost", "rx", "lost"), ("relocalised", "go", "relocalised")):
             idx = [i for i, t in enumerate(est[0]) if status.get(round(float(t), 6)) == name]
             if idx:
@@ -145,11 +183,10 @@ def plot_trajectory_top(run_dir):
 
 def moving_share(run_dir):
     """(t, share) of the left image covered by truly moving obstacles, from dynamic.csv."""
-    with open(os.path.join(run_dir, "scenario.yaml")) as f:
-        cam = ((yaml.safe_load(f) or {}).get("sensors") or {}).get("camera") or {}
+    cam = (read_scenario(run_dir).get("sensors") or {}).get("camera") or {}
     pixels = float(cam.get("width", 640)) * float(cam.get("height", 480))
     share = {}
-    for r in read_csv(os.path.join(run_dir, "dynamic.csv")):
+    for r in read_csv(os.path.join(run_dir, "dynamic.csv"), numeric=("t_s", "visible_px")):
         t = float(r["t_s"])
         share.setdefault(t, 0.0)
         if r.get("truly_moving") == "1":
@@ -207,7 +244,7 @@ def spans(ts, flags, period):
 
 
 def plot_dynamic_timeline(run_dir):
-    rows = read_csv(os.path.join(run_dir, "dynamic.csv"))
+    rows = read_csv(os.path.join(run_dir, "dynamic.csv"), numeric=("t_s",))
     objects = []
     for r in rows:
         if r["object"] not in objects:
@@ -242,7 +279,7 @@ def report_run(run_dir):
     os.makedirs(out, exist_ok=True)
     made = []
     plots = [("trajectory_top.png", plot_trajectory_top)]
-    if os.path.exists(os.path.join(run_dir, "trajectory_est.txt")):
+    if all(os.path.exists(os.path.join(run_dir, f)) for f in ("trajectory_est.txt", "trajectory_gt.txt")):
         plots.append(("error_time.png", plot_error_time))
     if read_csv(os.path.join(run_dir, "dynamic.csv")):
         plots.append(("dynamic_timeline.png", plot_dynamic_timeline))

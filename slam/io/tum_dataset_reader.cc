@@ -28,13 +28,21 @@ TumDatasetReader::TumDatasetReader(const std::string& dir, const std::string& ma
   }
   // The calibration after the lists: a folder that is no TUM sequence says so first.
   camera_ = camera_file.empty() ? ReadTumCamera(dir) : ReadCameraFile(camera_file);
+  // The first image's size: taken for a calibration without one (older ORB-SLAM2 files), else
+  // checked against it, so that a calibration of another camera is named before any work.
   PinholeIntrinsics& k = camera_.calibration.pinhole;
-  if (k.width == 0) {  // a calibration without the image size (older ORB-SLAM2 files): the first image's
+  {
     std::string why;
     const cv::Mat first = ReadImage8(frames_.front().a, &why);
     if (first.empty()) throw InputError(why);
-    k.width = first.cols;
-    k.height = first.rows;
+    if (k.width == 0) {
+      k.width = first.cols;
+      k.height = first.rows;
+    } else if (first.cols != k.width || first.rows != k.height) {
+      throw InputError(camera_.source + ": the calibration is for " + std::to_string(k.width) + "x" +
+                       std::to_string(k.height) + " images, " + frames_.front().a + " is " + std::to_string(first.cols) +
+                       "x" + std::to_string(first.rows));
+    }
   }
   if (!HasNoDistortion(camera_.calibration)) undistorter_ = std::make_unique<ImageUndistorter>(camera_.calibration);
   if (!masks_dir.empty()) masks_.emplace(masks_dir);
