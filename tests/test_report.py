@@ -101,7 +101,8 @@ class SweepReport(unittest.TestCase):
     def test_heatmap_and_line(self):
         tmp = tempfile.mkdtemp(prefix="viqu_report_sweep_")
         try:
-            open(os.path.join(tmp, "sweep.yaml"), "w").write("scenarios: []\n")
+            with open(os.path.join(tmp, "sweep.yaml"), "w") as f:
+                f.write("scenarios: []\n")
             with open(os.path.join(tmp, "results.csv"), "w") as f:
                 f.write("id,scenario,seed,a,b,ate.rmse_m,exit_code,status,wall_s\n")
                 n = 0
