@@ -56,13 +56,14 @@ cv::Mat OverlayVideo::Draw(const StereoFrame& frame, const slam::TrackResult* tr
     for (const SegmentInstance& inst : frame.instances) {
       if (inst.id == 0) continue;
       const cv::Mat mask = frame.left_instance_id == inst.id;
-      if (cv::countNonZero(mask) == 0) continue;
-      const cv::Vec3b c = ObjectColour(inst.id);
-      cv::Mat tint(img.size(), img.type(), cv::Scalar(c[0], c[1], c[2]));
-      cv::Mat blended;
-      cv::addWeighted(img, 1 - kMaskAlpha, tint, kMaskAlpha, 0, blended);
-      blended.copyTo(img, mask);
       const cv::Rect box = cv::boundingRect(mask);
+      if (box.empty()) continue;
+      // Blended within the object's box only: a frame may hold many objects.
+      const cv::Vec3b c = ObjectColour(inst.id);
+      cv::Mat roi = img(box), blended;
+      cv::addWeighted(roi, 1 - kMaskAlpha, cv::Mat(box.size(), img.type(), cv::Scalar(c[0], c[1], c[2])), kMaskAlpha, 0,
+                      blended);
+      blended.copyTo(roi, mask(box));
       const auto it = dynamic.find(inst.id);
       const bool is_dynamic = it != dynamic.end() && it->second;
       if (is_dynamic) cv::rectangle(img, box, kDropped, 2);

@@ -1,14 +1,9 @@
 #include "apps/report_command.h"
 
-#include <spawn.h>
-#include <sys/wait.h>
-
-#include <cerrno>
 #include <filesystem>
 
+#include "common/child_process.h"
 #include "common/errors.h"
-
-extern char** environ;
 
 namespace viqu::app {
 namespace {
@@ -26,17 +21,7 @@ int RunReport(const std::string& dir, const std::vector<std::string>& args) {
   if (!std::filesystem::exists(tool, ec)) throw RunError(tool + " not found");
   std::vector<std::string> all = {kPython, tool, dir};
   all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  if (posix_spawn(&pid, kPython, nullptr, nullptr, argv.data(), environ) != 0) throw RunError("cannot start " + tool);
-  int status = 0;
-  pid_t got;
-  while ((got = ::waitpid(pid, &status, 0)) == -1 && errno == EINTR) {
-  }  // a stop signal reaches the tool too (same process group); wait for it to end
-  if (got != pid) throw RunError("lost the report process");
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return WaitProcess(StartProcess(all));
 }
 
 }  // namespace viqu::app

@@ -1,10 +1,7 @@
 #include "apps/sweep_command.h"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -16,11 +13,10 @@
 #include "apps/sweep_spec.h"
 #include "apps/sweep_tables.h"
 #include "common/atomic_file.h"
+#include "common/child_process.h"
 #include "common/errors.h"
 #include "common/run_folder.h"
 #include "common/stop_signal.h"
-
-extern char** environ;
 
 namespace viqu::app {
 namespace {
@@ -52,23 +48,6 @@ std::vector<std::string> PointArgs(const std::string& viqu_exe, const SweepPoint
     a.push_back(s);
   }
   return a;
-}
-
-pid_t Spawn(const std::vector<std::string>& args, const std::string& log) {
-  std::vector<std::string> copy = args;
-  std::vector<char*> argv;
-  for (std::string& a : copy) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw RunError("cannot start " + args[0] + " for a sweep point");
-  return pid;
 }
 
 std::string Duration(double s) {
@@ -107,7 +86,6 @@ int RunPoints(const SweepSpec& spec, const std::vector<SweepPoint>& points, cons
   std::map<pid_t, Running> running;
   size_t next = 0, total = 0, done = 0, failed = 0;
   for (bool t : todo) total += t ? 1 : 0;
-  double busy_s = 0;  // summed wall time of finished points, for the estimate
   const auto sweep_start = Clock::now();
   int stop = 0;
   while (true) {
@@ -118,7 +96,7 @@ int RunPoints(const SweepSpec& spec, const std::vector<SweepPoint>& points, cons
         continue;
       }
       const SweepPoint& p = points[next];
-      const pid_t pid = Spawn(PointArgs(viqu_exe, p, dir), dir + "/logs/" + p.id + ".log");
+      const pid_t pid = StartProcess(PointArgs(viqu_exe, p, dir), dir + "/logs/" + p.id + ".log");
       Running r;
       r.index = next;
       r.start = Clock::now();
@@ -150,7 +128,7 @@ int RunPoints(const SweepSpec& spec, const std::vector<SweepPoint>& points, cons
     running.erase(it);
     const SweepPoint& p = points[r.index];
     PointOutcome o = ReadPointOutcome(spec, dir + "/points/" + p.id);
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    const int code = ExitCodeOf(status);
     o.exit_code = std::to_string(code);
     if (r.timed_out && o.status != "ok") {  // a run that completed before the SIGTERM counts as ok
       o.status = "timeout";
@@ -160,13 +138,11 @@ int RunPoints(const SweepSpec& spec, const std::vector<SweepPoint>& points, cons
     (*outcomes)[r.index] = o;
     ++done;
     if (o.status != "ok") ++failed;
-    busy_s += std::chrono::duration<double>(Clock::now() - r.start).count();
     const double elapsed = std::chrono::duration<double>(Clock::now() - sweep_start).count();
     const double left = done > 0 ? elapsed / done * (total - done) : 0;
     std::fprintf(stderr, "viqu sweep: %zu/%zu done (%zu failed), %zu running, about %s left; %s %s (exit %d)\n", done,
                  total, failed, running.size(), Duration(left).c_str(), p.id.c_str(), o.status.c_str(), code);
   }
-  (void)busy_s;
   return stop;
 }
 

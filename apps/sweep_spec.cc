@@ -133,10 +133,13 @@ SweepSpec LoadSweepSpec(const std::string& path) {
     throw InputError(path + ": the sweep expands to more than " + std::to_string(kMaxPoints) + " points");
   }
   // Every point's --set list against its scenario: a key or value `viqu run` would reject is
-  // reported now, with the point, before anything runs.
+  // reported now, with the point, before anything runs. The loads also give the names.
+  spec.scenario_names.assign(spec.scenarios.size(), "");
   for (const SweepPoint& p : ExpandSweep(spec)) {
+    const size_t s = static_cast<size_t>(std::find(spec.scenarios.begin(), spec.scenarios.end(), p.scenario) -
+                                         spec.scenarios.begin());
     try {
-      LoadScenario(p.scenario, p.sets);
+      spec.scenario_names[s] = LoadScenario(p.scenario, p.sets).name;
     } catch (const InputError& e) {
       throw InputError(path + ": point " + p.id + " (" + p.scenario + "): " + e.what());
     }
@@ -148,13 +151,9 @@ std::vector<SweepPoint> ExpandSweep(const SweepSpec& spec) {
   std::vector<SweepPoint> out;
   size_t combinations = 1;
   for (const auto& g : spec.grid) combinations *= g.second.size();
-  for (const std::string& scenario : spec.scenarios) {
-    std::string name;
-    try {
-      name = LoadScenario(scenario).name;
-    } catch (const InputError&) {
-      name = fs::path(scenario).stem().string();  // the error is LoadSweepSpec's to report
-    }
+  for (size_t s = 0; s < spec.scenarios.size(); ++s) {
+    const std::string& scenario = spec.scenarios[s];
+    const std::string name = s < spec.scenario_names.size() ? spec.scenario_names[s] : "";
     for (size_t c = 0; c < combinations; ++c) {
       // Combination c, the last grid key fastest.
       std::vector<size_t> index(spec.grid.size());

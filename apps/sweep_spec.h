@@ -20,6 +20,7 @@ namespace viqu::app {
 struct SweepSpec {
   std::string source_file;                 // the sweep file
   std::vector<std::string> scenarios;      // absolute paths
+  std::vector<std::string> scenario_names; // each scenario's `name` (filled by LoadSweepSpec)
   std::vector<uint64_t> seeds;
   // Grid keys in file order, each with its values as `--set` text (YAML flow form).
   std::vector<std::pair<std::string, std::vector<std::string>>> grid;

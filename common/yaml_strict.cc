@@ -91,7 +91,7 @@ YAML::Node ParseText(const std::string& text, const std::string& name) {
 
 }  // namespace
 
-YAML::Node LoadYamlFile(const std::string& path) {
+std::string ReadYamlFileText(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": file not found");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a file");
@@ -107,8 +107,10 @@ YAML::Node LoadYamlFile(const std::string& path) {
     throw InputError(path + ": larger than " + std::to_string(kMaxYamlFileBytes >> 20) +
                      " MiB; not a scenario, settings or calibration file");
   }
-  return ParseText(text, path);
+  return text;
 }
+
+YAML::Node LoadYamlFile(const std::string& path) { return ParseText(ReadYamlFileText(path), path); }
 
 YAML::Node LoadYamlText(const std::string& text, const std::string& name) {
   return ParseText(text, name);

@@ -26,6 +26,10 @@ namespace viqu {
 // error: InputError "FILE:LINE:COL: YAML syntax error: ...". An empty file gives a null node.
 YAML::Node LoadYamlFile(const std::string& path);
 
+// The text of a YAML file: a regular file (not a device or pipe) of at most 16 MiB; InputError
+// naming the file otherwise. LoadYamlFile parses it; readers of YAML dialects adjust it first.
+std::string ReadYamlFileText(const std::string& path);
+
 // Parses YAML text; `name` stands for the file in messages.
 YAML::Node LoadYamlText(const std::string& text, const std::string& name);
 

@@ -143,11 +143,14 @@ def require_complete_run(run_dir):
         raise BadInput(f"{marker}: unreadable ({e})") from None
 
 
+def read_trajectories(run_dir):
+    """Ground truth, SLAM estimate and leg odometry of a run folder (None for each one absent)."""
+    return tuple(read_tum(os.path.join(run_dir, f"trajectory_{k}.txt")) for k in ("gt", "est", "lo"))
+
+
 def plot_trajectory_top(run_dir):
     """The top-view figure (returned for tests; the caller saves it)."""
-    gt = read_tum(os.path.join(run_dir, "trajectory_gt.txt"))
-    est = read_tum(os.path.join(run_dir, "trajectory_est.txt"))
-    lo = read_tum(os.path.join(run_dir, "trajectory_lo.txt"))
+    gt, est, lo = read_trajectories(run_dir)
     if gt is None and est is None:
         raise BadInput(f"{run_dir}: no trajectory_gt.txt and no trajectory_est.txt")
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
@@ -196,9 +199,7 @@ def moving_share(run_dir):
 
 
 def plot_error_time(run_dir):
-    gt = read_tum(os.path.join(run_dir, "trajectory_gt.txt"))
-    est = read_tum(os.path.join(run_dir, "trajectory_est.txt"))
-    lo = read_tum(os.path.join(run_dir, "trajectory_lo.txt"))
+    gt, est, lo = read_trajectories(run_dir)
     if gt is None or est is None:
         raise BadInput(f"{run_dir}: error_time.png needs trajectory_gt.txt and trajectory_est.txt")
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
@@ -304,6 +305,11 @@ def number(text):
         return None
 
 
+def grid_values(results, key):
+    """The values a grid key takes, numbers in numeric order before any text."""
+    return sorted({r[key] for r in results}, key=lambda v: (number(v) is None, number(v) or 0, v))
+
+
 def report_sweep(sweep_dir, x, y, metric):
     results = read_csv(os.path.join(sweep_dir, "results.csv"))
     if not results:
@@ -319,8 +325,7 @@ def report_sweep(sweep_dir, x, y, metric):
     os.makedirs(out, exist_ok=True)
     safe = metric.replace("/", "_")
     if y:
-        xs = sorted({r[x] for r in results}, key=lambda v: (number(v) is None, number(v) or 0, v))
-        ys = sorted({r[y] for r in results}, key=lambda v: (number(v) is None, number(v) or 0, v))
+        xs, ys = grid_values(results, x), grid_values(results, y)
         grid = np.full((len(ys), len(xs)), np.nan)
         for iy, vy in enumerate(ys):
             for ix, vx in enumerate(xs):
@@ -345,7 +350,7 @@ def report_sweep(sweep_dir, x, y, metric):
         fig.tight_layout()
         name = f"heatmap_{safe}.png"
     else:
-        xs = sorted({r[x] for r in results}, key=lambda v: (number(v) is None, number(v) or 0, v))
+        xs = grid_values(results, x)
         pos = [number(v) if number(v) is not None else i for i, v in enumerate(xs)]
         fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
         means, lo, hi = [], [], []

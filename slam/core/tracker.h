@@ -66,15 +66,11 @@ class Tracker {
   }
 
   bool HasCamera() const { return have_camera_; }
-
- private:
-  void RecordFates();  // fills last_fates_ from last_ at the end of Track()
-
- public:
   const StereoCamera& camera() const { return cam_; }
   void SetCamera(const StereoFrame& frame);
 
  private:
+  void RecordFates();  // fills last_fates_ from last_ at the end of Track()
   bool Initialise();
   void AddTemporaryPointsToLastFrame();
   bool TrackWithMotionModel();

@@ -1,30 +1,12 @@
 #include "slam/io/camera_file.h"
 
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include "common/errors.h"
 #include "common/yaml_map_reader.h"
 #include "common/yaml_strict.h"
+#include "slam/io/euroc_sensor_yaml.h"
 
 namespace viqu::io {
 namespace {
-
-// The largest calibration file read (bytes); ORB-SLAM settings files are a few KiB.
-constexpr std::streamsize kMaxCameraFileBytes = 1 << 20;
-
-std::string ReadText(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": camera file not found (or not a file)");
-  std::ifstream in(path, std::ios::binary);
-  std::string text(static_cast<size_t>(kMaxCameraFileBytes) + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) throw InputError(path + ": read error");
-  text.resize(static_cast<size_t>(in.gcount()));
-  if (text.size() > static_cast<size_t>(kMaxCameraFileBytes)) throw InputError(path + ": larger than 1 MiB; not a camera file");
-  return text;
-}
 
 TumCamera ReadViqu(const YamlSource& src, const YAML::Node& root, const std::string& path) {
   YamlMapReader top(src, root, "");
@@ -84,18 +66,14 @@ TumCamera ReadOrbSlam(const YamlSource& src, const YAML::Node& root, const std::
 }  // namespace
 
 TumCamera ReadCameraFile(const std::string& path) {
-  std::string text = ReadText(path);
-  // OpenCV's FileStorage writes "%YAML:1.0", which is no YAML directive: blank it (as a comment,
-  // so that line numbers stay right).
-  const bool opencv_header = text.compare(0, 6, "%YAML:") == 0;
-  if (opencv_header) text[0] = '#';
-  const YAML::Node root = LoadYamlText(text, path);
+  // OpenCV-flavoured YAML ("%YAML:1.0", as ORB-SLAM's files and EuRoC's sensor.yaml are written).
+  const YAML::Node root = LoadEurocYaml(path);
   const YamlSource src(path);
   if (!root.IsMap()) throw InputError(path + ": expected a map of calibration keys");
   if (root["Camera1.fx"]) return ReadOrbSlam(src, root, path, "Camera1.");
-  if (root["Camera.fx"]) return ReadOrbSlam(src, root, path, "Camera.");
-  if (opencv_header) {
-    throw InputError(path + ": an OpenCV/ORB-SLAM settings file without Camera.fx or Camera1.fx (no pinhole calibration)");
+  // Any Camera.* key makes it an ORB-SLAM2 file: a missing Camera.fx is then named as such.
+  for (const auto& kv : root) {
+    if (kv.first.Scalar().rfind("Camera.", 0) == 0) return ReadOrbSlam(src, root, path, "Camera.");
   }
   return ReadViqu(src, root, path);
 }

@@ -1,11 +1,6 @@
 #include "slam/io/euroc_sensor_yaml.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <Eigen/SVD>
 
@@ -44,13 +39,7 @@ Eigen::Isometry3d ReadTransform(const YamlSource& src, YamlMapReader* top) {
 }  // namespace
 
 YAML::Node LoadEurocYaml(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": file not found");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
+  std::string s = ReadYamlFileText(path);
   // Blank directive lines ("%YAML:1.0"), keeping the newline so that line numbers stay.
   size_t pos = 0;
   while (pos < s.size()) {
