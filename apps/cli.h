@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/run_options.h"
+#include "runner/run_options.h"
 
 namespace viqu::app {
 
@@ -10,7 +10,7 @@ namespace viqu::app {
 struct RunArgs {
   std::string scenario;           // scenario YAML path
   std::vector<std::string> sets;  // "key.path=value" overrides, in command-line order
-  RunOptions options;             // out_dir empty when --out was not given
+  runner::RunOptions options;           // out_dir empty when --out was not given
 };
 
 // `viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--camera FILE] [--out DIR] [--force] [--masks DIR]

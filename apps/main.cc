@@ -8,8 +8,8 @@
 
 #include "apps/cli.h"
 #include "apps/eval_command.h"
-#include "apps/run_options.h"
-#include "apps/run_scenario.h"
+#include "runner/run_options.h"
+#include "runner/run_scenario.h"
 #include "apps/report_command.h"
 #include "apps/slam_command.h"
 #include "apps/sweep_command.h"
@@ -40,10 +40,10 @@ std::string SelfPath() {
 
 int Run(const RunArgs& args, const std::string& command_line) {
   const Scenario scenario = LoadScenario(args.scenario, args.sets);
-  RunOptions options = args.options;
+  runner::RunOptions options = args.options;
   options.command_line = command_line;
   if (options.out_dir.empty()) options.out_dir = "runs/" + scenario.name;
-  const int code = RunScenario(scenario, options);
+  const int code = runner::RunScenario(scenario, options);
   if (options.report && (code == 0 || code == 1)) {
     const int report = RunReport(options.out_dir, {});
     if (report != 0) std::fprintf(stderr, "viqu: the report failed (exit %d); the run folder is complete\n", report);

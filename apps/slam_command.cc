@@ -7,7 +7,7 @@
 #include <limits>
 #include <optional>
 
-#include "apps/slam_run.h"
+#include "runner/slam_run.h"
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "common/json_writer.h"
@@ -143,7 +143,7 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
     fusion = std::make_unique<slam::VisualLegFusion>(fused_lo.get(), proprio->T_body_cam0, settings.lo.fusion_min_inliers);
     feed = std::make_unique<ProprioceptionFeed>(*proprio, settings.lo.contact, fused_lo.get());
   }
-  std::unique_ptr<SlamRun> run;
+  std::unique_ptr<runner::SlamRun> run;
   StereoFrame frame;
   int64_t first_t = 0, last_t = 0;
   int frames = 0;
@@ -153,7 +153,7 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
       // The map is anchored at the ground-truth pose of the first frame when there is one, as
       // the live run anchors it, so that both give the same trajectory.
       const StampedPose* p0 = NearestPose(gt, frame.t_ns);
-      run = std::make_unique<SlamRun>(settings, out, p0 ? ToIsometry(*p0) : Eigen::Isometry3d::Identity());
+      run = std::make_unique<runner::SlamRun>(settings, out, p0 ? ToIsometry(*p0) : Eigen::Isometry3d::Identity());
       if (fusion) run->SetFusion(fusion.get());
       first_t = frame.t_ns;
     }
@@ -187,7 +187,7 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
     for (const StampedPose& p : gt) gt_out.Add(p);
     gt_out.Close();
   }
-  const SlamSummary summary = run->Finish(gt, path, &json);
+  const runner::SlamSummary summary = run->Finish(gt, path, &json);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   json.Set("timing.wall_time_s", wall);
   WriteFileAtomic(out + "/metrics.json", json.ToString());
@@ -202,7 +202,7 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   if (!summary.ate_unavailable.empty()) std::fprintf(stderr, "viqu: note: no ATE: %s\n", summary.ate_unavailable.c_str());
   std::printf("viqu slam %s (%s): %d frames in %.1f s\n", args.dataset_dir.c_str(), io::DatasetFormatName(format),
               frames, wall);
-  std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
+  std::printf("SLAM: %s\n", runner::SlamSummaryLine(summary).c_str());
   std::printf("outputs: %s/{trajectory_est.txt,%smetrics.json,slam_settings.yaml,run_complete.json}\n",
               folder.final_path().c_str(),
               gt.empty() ? "" : "trajectory_gt.txt,");

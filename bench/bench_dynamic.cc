@@ -28,7 +28,7 @@
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
 
-#include "apps/run_metrics.h"
+#include "runner/run_metrics.h"
 #include "slam/core/camera.h"
 #include "slam/core/dynamic_objects.h"
 #include "slam/core/frame.h"
@@ -271,8 +271,8 @@ void RunDynamicStage(benchmark::State& state, const char* method, PersonLook loo
     ++frame;
   }
   const double n = static_cast<double>(std::max<int64_t>(frame, 1));
-  state.counters["median_ms"] = app::Median(ms);
-  state.counters["p95_ms"] = app::Percentile(ms, 0.95);
+  state.counters["median_ms"] = runner::Median(ms);
+  state.counters["p95_ms"] = runner::Percentile(ms, 0.95);
   state.counters["features"] = seq.features;
   state.counters["person_feat"] = seq.person_features;
   state.counters["box_feat"] = seq.box_features;

@@ -2,7 +2,7 @@
 #include <benchmark/benchmark.h>
 #include <opencv2/imgproc.hpp>
 
-#include "apps/robot_rig.h"
+#include "runner/robot_rig.h"
 #include "sim/stereo_renderer.h"
 #include "slam/features/orb_extractor.h"
 #include "slam/features/stereo_matcher.h"
@@ -22,7 +22,7 @@ const Pair& RoomPair() {
     s.world = std::string(VIQU_SOURCE_DIR) + "/models/worlds/room.xml";
     s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
     s.robot.start.yaw_deg = 30;
-    app::RobotRig rig(s);
+    runner::RobotRig rig(s);
     sim::RenderOptions ro;
     ro.depth = false;
     ro.segmentation = false;

@@ -3,8 +3,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "apps/robot_rig.h"
-#include "apps/run_scenario.h"
+#include "runner/robot_rig.h"
+#include "runner/run_scenario.h"
 #include "scenario/scenario_loader.h"
 
 namespace viqu {
@@ -21,7 +21,7 @@ Scenario RoomScenario() {
 
 // Physics steps (1 ms) per second, robot trotting in the room: control + mj_step.
 void BM_PhysicsStep(benchmark::State& state) {
-  app::RobotRig rig(RoomScenario());
+  runner::RobotRig rig(RoomScenario());
   for (auto _ : state) rig.Step(rig.TruePose2());
   state.SetItemsProcessed(state.iterations());
 }
@@ -36,13 +36,13 @@ void BM_WalkingPeopleRun(benchmark::State& state) {
     return;
   }
   const Scenario s = LoadScenario(path, {"duration_s=10"});
-  app::RunOptions opt;
+  runner::RunOptions opt;
   opt.out_dir = (std::filesystem::temp_directory_path() / "viqu_bench_run").string();
   opt.slam = false;
   opt.record = state.range(0) != 0;
   double sim_s = 0;
   for (auto _ : state) {
-    app::RunScenario(s, opt);
+    runner::RunScenario(s, opt);
     sim_s += s.duration_s;
   }
   state.counters["real_time_factor"] = benchmark::Counter(sim_s, benchmark::Counter::kIsRate);

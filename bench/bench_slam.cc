@@ -6,8 +6,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "apps/robot_rig.h"
-#include "apps/run_metrics.h"
+#include "runner/robot_rig.h"
+#include "runner/run_metrics.h"
 #include "scenario/scenario_loader.h"
 #include "sim/camera_noise.h"
 #include "sim/stereo_renderer.h"
@@ -23,7 +23,7 @@ constexpr int kStepsPerFrame = 50;  // 1 kHz physics, 20 Hz camera
 const std::vector<StereoFrame>& Sequence() {
   static const std::vector<StereoFrame> frames = [] {
     const Scenario s = LoadScenario(std::string(VIQU_SOURCE_DIR) + "/scenarios/static_room.yaml", {});
-    app::RobotRig rig(s);
+    runner::RobotRig rig(s);
     sim::RenderOptions ro;
     ro.width = s.sensors.camera.width;
     ro.height = s.sensors.camera.height;
@@ -57,10 +57,10 @@ void BM_SlamSequence(benchmark::State& state) {
     stats = system.Stats();
   }
   state.counters["frames"] = static_cast<double>(frames.size());
-  state.counters["track_ms_median"] = app::Median(stats.track_ms);
-  state.counters["track_ms_p95"] = app::Percentile(stats.track_ms, 0.95);
+  state.counters["track_ms_median"] = runner::Median(stats.track_ms);
+  state.counters["track_ms_p95"] = runner::Percentile(stats.track_ms, 0.95);
   state.counters["keyframes"] = stats.keyframes;
-  state.counters["local_ba_ms_median"] = app::Median(stats.local_ba_ms);
+  state.counters["local_ba_ms_median"] = runner::Median(stats.local_ba_ms);
   state.counters["lost"] = stats.lost_frames;
 }
 BENCHMARK(BM_SlamSequence)->Unit(benchmark::kMillisecond)->Iterations(2);

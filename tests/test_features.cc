@@ -7,7 +7,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "apps/robot_rig.h"
+#include "runner/robot_rig.h"
 #include "sim/stereo_renderer.h"
 #include "slam/features/orb_extractor.h"
 #include "slam/features/stereo_matcher.h"
@@ -27,7 +27,7 @@ RenderedPair RenderRoom(double x, double y, double yaw_deg) {
   s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
   s.robot.start.xy = {x, y};
   s.robot.start.yaw_deg = yaw_deg;
-  app::RobotRig rig(s);
+  runner::RobotRig rig(s);
   sim::RenderOptions ro;
   ro.segmentation = false;
   sim::StereoRenderer renderer(rig.world().model(), ro);

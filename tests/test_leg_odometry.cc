@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/slip_score.h"
+#include "runner/slip_score.h"
 #include "kinematics/leg_kinematics.h"
 #include "slam/lo/attitude_filter.h"
 #include "slam/lo/leg_imu_kf.h"
@@ -275,7 +275,7 @@ TEST_F(SyntheticStance, EstimatedContactFindsTheLowFeet) {
 }
 
 TEST(SlipScore, EventsFromSamplesAndTheirMatching) {
-  app::SlipEventBuilder truth_b(0.02), det_b(0.0);
+  runner::SlipEventBuilder truth_b(0.02), det_b(0.0);
   const int64_t dt = 5'000'000;
   // Truth: FL slides over samples 10-15 (30 ms), FR over 40-41 (10 ms: too short to count).
   // Detected: FL at 12-13 (matches), BL at 60 (false alarm).
@@ -288,17 +288,17 @@ TEST(SlipScore, EventsFromSamplesAndTheirMatching) {
     truth_b.Add(k * dt, dt, t, {0.1, 0.1, 0.1, 0.1});
     det_b.Add(k * dt, dt, d, {20, 20, 20, 20});
   }
-  std::vector<app::SlipEvent> truth = truth_b.Finish(), det = det_b.Finish();
+  std::vector<runner::SlipEvent> truth = truth_b.Finish(), det = det_b.Finish();
   ASSERT_EQ(truth.size(), 1u);
   EXPECT_EQ(truth[0].start_ns, 10 * dt);
   EXPECT_EQ(truth[0].end_ns, 16 * dt);
   ASSERT_EQ(det.size(), 2u);
-  const app::SlipScore s = app::ScoreSlip(&truth, &det, 0.02);
+  const runner::SlipScore s = runner::ScoreSlip(&truth, &det, 0.02);
   EXPECT_EQ(s.true_found, 1);
   EXPECT_EQ(s.detections_correct, 1);
   EXPECT_DOUBLE_EQ(s.precision, 0.5);
   EXPECT_DOUBLE_EQ(s.recall, 1.0);
-  EXPECT_NE(app::SlipCsv(truth, det).find("detected,BL,0.300,0.305"), std::string::npos);
+  EXPECT_NE(runner::SlipCsv(truth, det).find("detected,BL,0.300,0.305"), std::string::npos);
 }
 
 }  // namespace

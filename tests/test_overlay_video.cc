@@ -6,9 +6,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "apps/overlay_video.h"
+#include "runner/overlay_video.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -87,4 +87,4 @@ TEST(OverlayVideo, WritesAVideoThatReadsBack) {
 }
 
 }  // namespace
-}  // namespace viqu::app
+}  // namespace viqu::runner

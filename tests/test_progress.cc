@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/progress.h"
+#include "runner/progress.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 namespace {
 
 // Captures what the progress line writes.
@@ -63,4 +63,4 @@ TEST(ProgressLine, NoNewlineWhenNothingWasDrawn) {
 }
 
 }  // namespace
-}  // namespace viqu::app
+}  // namespace viqu::runner

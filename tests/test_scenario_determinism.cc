@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/run_scenario.h"
+#include "runner/run_scenario.h"
 
 namespace viqu {
 namespace {
@@ -42,11 +42,11 @@ Scenario ShortScenario(uint64_t seed) {
 fs::path RunInto(const Scenario& s, const std::string& tag) {
   const fs::path dir = fs::temp_directory_path() / ("viqu_determinism_" + tag);
   fs::remove_all(dir);
-  app::RunOptions opt;
+  runner::RunOptions opt;
   opt.out_dir = dir.string();
   opt.slam = false;
   opt.record = true;
-  EXPECT_EQ(app::RunScenario(s, opt), 0);
+  EXPECT_EQ(runner::RunScenario(s, opt), 0);
   return dir;
 }
 

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "apps/run_scenario.h"
+#include "runner/run_scenario.h"
 #include "scenario/scenario_loader.h"
 
 namespace viqu {
@@ -35,9 +35,9 @@ DynamicRun RunMethod(const std::string& scenario, const std::string& method, con
                                   {"slam.dynamic.method=" + method, "slam.mode=" + mode});
   const fs::path dir = fs::temp_directory_path() / ("viqu_dynamic_" + scenario + "_" + method + "_" + mode);
   fs::remove_all(dir);
-  app::RunOptions opt;
+  runner::RunOptions opt;
   opt.out_dir = dir.string();
-  EXPECT_EQ(app::RunScenario(s, opt), 0);
+  EXPECT_EQ(runner::RunScenario(s, opt), 0);
   EXPECT_TRUE(fs::exists(dir / "dynamic.csv"));
   DynamicRun r{YAML::LoadFile((dir / "metrics.json").string())};
   std::printf("%s %s %-9s ATE %.4f m (%.3f%% of path), %d lost; precision %.3f recall %.3f latency median %.2f s "

@@ -13,7 +13,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "apps/robot_rig.h"
+#include "runner/robot_rig.h"
 #include "scenario/scenario_loader.h"
 #include "sim/stereo_renderer.h"
 
@@ -35,7 +35,7 @@ class ScenarioFile : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ScenarioFile, WalksItsCourseAndSeesRichTexture) {
   const Scenario s = LoadScenario(GetParam());
-  app::RobotRig rig(s);
+  runner::RobotRig rig(s);
   sim::World& w = rig.world();
   sim::RenderOptions ropt;
   ropt.width = 640;

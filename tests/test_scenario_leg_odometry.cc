@@ -19,7 +19,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "apps/run_scenario.h"
+#include "runner/run_scenario.h"
 #include "scenario/scenario_loader.h"
 
 namespace viqu {
@@ -37,9 +37,9 @@ RunOutput RunScenario(const std::string& file, const std::string& tag, const std
   RunOutput r;
   r.dir = fs::temp_directory_path() / ("viqu_lo_" + tag);
   fs::remove_all(r.dir);
-  app::RunOptions opt;
+  runner::RunOptions opt;
   opt.out_dir = r.dir.string();
-  EXPECT_EQ(app::RunScenario(s, opt), 0);
+  EXPECT_EQ(runner::RunScenario(s, opt), 0);
   r.metrics = YAML::LoadFile((r.dir / "metrics.json").string());
   return r;
 }

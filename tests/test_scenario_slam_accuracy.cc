@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "apps/run_scenario.h"
+#include "runner/run_scenario.h"
 #include "scenario/scenario_loader.h"
 
 namespace viqu {
@@ -21,9 +21,9 @@ YAML::Node RunAndReadMetrics(const std::string& scenario_file, const std::string
   const Scenario s = LoadScenario(std::string(VIQU_SOURCE_DIR) + "/scenarios/" + scenario_file, {});
   const fs::path dir = fs::temp_directory_path() / ("viqu_slam_accuracy_" + tag);
   fs::remove_all(dir);
-  app::RunOptions opt;
+  runner::RunOptions opt;
   opt.out_dir = dir.string();
-  EXPECT_EQ(app::RunScenario(s, opt), 0);
+  EXPECT_EQ(runner::RunScenario(s, opt), 0);
   EXPECT_TRUE(fs::exists(dir / "trajectory_est.txt"));
   // metrics.json is JSON, which YAML reads.
   return YAML::LoadFile((dir / "metrics.json").string());

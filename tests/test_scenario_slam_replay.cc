@@ -35,7 +35,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "apps/cli.h"
-#include "apps/run_scenario.h"
+#include "runner/run_scenario.h"
 #include "apps/slam_command.h"
 #include "common/errors.h"
 #include "scenario/scenario_loader.h"
@@ -258,10 +258,10 @@ TEST(SlamReplay, ViquFormatReplaysTheLiveStereoRunWithItsDynamicDecisions) {
   s.sensors.segmentation.wrong_category_rate = 0.1;
   s.sensors.segmentation.false_positive_rate = 0.2;
   const fs::path live = Fresh("stereo_live");
-  app::RunOptions opt;
+  runner::RunOptions opt;
   opt.out_dir = live.string();
   opt.record = true;
-  ASSERT_EQ(app::RunScenario(s, opt), 0);
+  ASSERT_EQ(runner::RunScenario(s, opt), 0);
   ExpectDynamicStageAtWork(live);
   // Both detector faults reached the SLAM system: the person reported under another movable
   // category in some frame, and spurious masks reported.
@@ -331,11 +331,11 @@ TEST(SlamReplay, RgbdRunReplaysFromSeg0AndFromTumWithMasks) {
   Scenario s = ShortRoomWithPerson(cfg.string());
   s.sensors.segmentation.false_positive_rate = 0.2;
   const fs::path live = Fresh("rgbd_live");
-  app::RunOptions opt;
+  runner::RunOptions opt;
   opt.out_dir = live.string();
   opt.record = true;
   opt.record_tum = true;
-  ASSERT_EQ(app::RunScenario(s, opt), 0);
+  ASSERT_EQ(runner::RunScenario(s, opt), 0);
   EXPECT_EQ(Metrics(live)["slam"]["input"].as<std::string>(), "rgbd");
   ExpectDynamicStageAtWork(live);
 

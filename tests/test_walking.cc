@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/robot_rig.h"
+#include "runner/robot_rig.h"
 #include "sim/imu_model.h"
 
 namespace viqu {
@@ -32,7 +32,7 @@ struct WalkStats {
 
 // Walks under a velocity schedule for `duration_s`, measuring after `settle_s`.
 WalkStats Walk(Scenario s, double duration_s, double settle_s) {
-  app::RobotRig rig(s);
+  runner::RobotRig rig(s);
   sim::World& w = rig.world();
   WalkStats st;
   const double dt = w.model()->opt.timestep;
@@ -102,7 +102,7 @@ TEST(Walking, FollowsASquareOfWaypointsByGroundTruth) {
   Scenario s = FlatScenario();
   s.robot.command.waypoints = {{2, 0}, {2, 2}, {0, 2}, {0, 0}};
   s.robot.command.speed_mps = 0.12;
-  app::RobotRig rig(s);
+  runner::RobotRig rig(s);
   const Eigen::Vector3d start = rig.world().GroundTruth().T_w_body.p_w_x;
   double max_tilt = 0;
   const double dt = rig.world().model()->opt.timestep;
@@ -124,7 +124,7 @@ TEST(Walking, FollowsASquareOfWaypointsByGroundTruth) {
 
 TEST(Walking, StandingImuReadsGravityAndGyroBias) {
   Scenario s = FlatScenario();
-  app::RobotRig rig(s);
+  runner::RobotRig rig(s);
   sim::World& w = rig.world();
   ImuConfig cfg;  // defaults: accel noise 0.02 m/s^2, gyro noise 0.002 rad/s per sample
   sim::ImuModel imu(cfg, 11);

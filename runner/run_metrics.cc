@@ -1,4 +1,4 @@
-#include "apps/run_metrics.h"
+#include "runner/run_metrics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "common/json_writer.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 double Percentile(std::vector<double> v, double p) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -41,4 +41,4 @@ void AddRunMetrics(const Scenario& s, const RunMetrics& m, JsonWriter* json) {
   j.Set("timing.renderer", m.renderer);
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -1,8 +1,8 @@
-#include "apps/robot_rig.h"
+#include "runner/robot_rig.h"
 
 #include <cmath>
 
-namespace viqu::app {
+namespace viqu::runner {
 
 std::string UrdfBesideMjcf(const std::string& mjcf_path) {
   const auto dot = mjcf_path.find_last_of('.');
@@ -48,4 +48,4 @@ ctrl::Pose2 Pose2Of(const Eigen::Isometry3d& T_w_body) {
   return ctrl::Pose2{T_w_body.translation().x(), T_w_body.translation().y(), std::atan2(x_w.y(), x_w.x())};
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -1,4 +1,4 @@
-#include "apps/run_scenario.h"
+#include "runner/run_scenario.h"
 
 #include <chrono>
 #include <cstdio>
@@ -10,13 +10,13 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "apps/lo_run.h"
-#include "apps/overlay_video.h"
-#include "apps/progress.h"
-#include "apps/robot_rig.h"
-#include "apps/run_metrics.h"
-#include "apps/sensor_clock.h"
-#include "apps/slam_run.h"
+#include "runner/lo_run.h"
+#include "runner/overlay_video.h"
+#include "runner/progress.h"
+#include "runner/robot_rig.h"
+#include "runner/run_metrics.h"
+#include "runner/sensor_clock.h"
+#include "runner/slam_run.h"
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "common/run_folder.h"
@@ -35,7 +35,7 @@
 #include "slam/features/orb_extractor.h"
 #include "slam/settings/slam_settings.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 namespace {
 
 // Per-stream constants mixed into the scenario seed (docs/CONVENTIONS.md).
@@ -309,4 +309,4 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   return exit_code;
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -12,7 +12,7 @@
 #include "slam/core/slam_system.h"
 #include "slam/measurements/stereo_frame.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 class OverlayVideo {
  public:
@@ -35,4 +35,4 @@ class OverlayVideo {
   bool done_ = false;
 };
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

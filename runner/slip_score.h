@@ -14,7 +14,7 @@
 #include "common/json_writer.h"
 #include "slam/measurements/joint_state.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 constexpr double kSlipSpeedMps = 0.05;    // true slip: sole speed above this in contact (m/s), issue 8
 constexpr double kSlipMinDurationS = 0.02;  // true slip: lasting at least this (s), issue 8
@@ -56,4 +56,4 @@ SlipScore ScoreSlip(std::vector<SlipEvent>* truth, std::vector<SlipEvent>* detec
 // slip.csv: kind (truth|detected), leg, start_s, end_s, peak, matched.
 std::string SlipCsv(const std::vector<SlipEvent>& truth, const std::vector<SlipEvent>& detected);
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -9,14 +9,14 @@
 #include <vector>
 
 #include "common/atomic_output_file.h"
-#include "apps/dynamic_score.h"
+#include "runner/dynamic_score.h"
 #include "common/json_writer.h"
 #include "sim/trajectory_writer.h"
 #include "slam/core/slam_system.h"
 #include "slam/fusion/visual_leg_fusion.h"
 #include "slam/eval/trajectory.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 struct SlamSummary {
   bool has_ate = false;
@@ -63,4 +63,4 @@ class SlamRun {
 // "ATE 0.0123 m RMSE (0.41% of 3.00 m), 0 lost of 400 frames, 35 keyframes, tracking 18.2 ms median"
 std::string SlamSummaryLine(const SlamSummary& s);
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

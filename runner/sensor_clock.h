@@ -2,7 +2,7 @@
 #include <cmath>
 #include <cstdint>
 
-namespace viqu::app {
+namespace viqu::runner {
 
 // Fires at a fixed rate on the simulated clock: at t = 0, period, 2 period, ...
 class SensorClock {
@@ -21,4 +21,4 @@ class SensorClock {
   int64_t next_ns_ = 0;  // time of the next tick (ns)
 };
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -2,7 +2,7 @@
 #include <chrono>
 #include <cstdio>
 
-namespace viqu::app {
+namespace viqu::runner {
 
 // A one-line progress display on stderr: "\r sim 12.3/40.0 s  RTF 0.87x", redrawn at most about
 // four times a second, ended by a newline in Finish(). Silent when stderr is not a terminal, so
@@ -44,4 +44,4 @@ class ProgressLine {
   const char* note_ = "";                             // shown after the rate
 };
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

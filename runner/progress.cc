@@ -1,8 +1,8 @@
-#include "apps/progress.h"
+#include "runner/progress.h"
 
 #include <unistd.h>
 
-namespace viqu::app {
+namespace viqu::runner {
 namespace {
 constexpr double kRedrawPeriodS = 0.25;  // about 4 Hz
 }  // namespace
@@ -54,4 +54,4 @@ void ProgressLine::Finish() {
   }
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -1,10 +1,10 @@
-#include "apps/slip_score.h"
+#include "runner/slip_score.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-namespace viqu::app {
+namespace viqu::runner {
 
 void SlipEventBuilder::Add(int64_t t_ns, int64_t period_ns, const std::array<bool, kNumLegs>& on,
                            const std::array<double, kNumLegs>& value) {
@@ -73,4 +73,4 @@ std::string SlipCsv(const std::vector<SlipEvent>& truth, const std::vector<SlipE
   return out;
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -1,12 +1,12 @@
-#include "apps/slam_run.h"
+#include "runner/slam_run.h"
 
 #include <cstdio>
 
-#include "apps/run_metrics.h"
+#include "runner/run_metrics.h"
 #include "common/errors.h"
 #include "slam/eval/trajectory_error.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 SlamRun::SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
                  const Eigen::Isometry3d& world_from_first_camera)
@@ -109,4 +109,4 @@ std::string SlamSummaryLine(const SlamSummary& s) {
   return out + buf;
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

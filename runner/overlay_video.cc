@@ -1,4 +1,4 @@
-#include "apps/overlay_video.h"
+#include "runner/overlay_video.h"
 
 #include <cstdio>
 #include <map>
@@ -8,7 +8,7 @@
 #include "common/atomic_file.h"
 #include "common/errors.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 namespace {
 
 // Colours (BGR).
@@ -114,4 +114,4 @@ void OverlayVideo::Finish() {
   done_ = true;
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

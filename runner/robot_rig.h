@@ -10,7 +10,7 @@
 #include "scenario/scenario.h"
 #include "sim/world.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 class RobotRig {
  public:
@@ -46,4 +46,4 @@ ctrl::Pose2 Pose2Of(const Eigen::Isometry3d& T_w_body);
 // The URDF that describes the same robot as an MJCF file: same folder and stem, ".urdf".
 std::string UrdfBesideMjcf(const std::string& mjcf_path);
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -1,14 +1,14 @@
-#include "apps/dynamic_score.h"
+#include "runner/dynamic_score.h"
 
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include "apps/run_metrics.h"
+#include "runner/run_metrics.h"
 #include "sim/segmentation_ids.h"
 #include "sim/trajectory_writer.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 namespace {
 
 double Share(int64_t part, int64_t whole) {
@@ -139,4 +139,4 @@ void DynamicScore::Finish(JsonWriter* json) {
                                                        : *std::max_element(latencies.begin(), latencies.end()));
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

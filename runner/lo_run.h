@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "apps/slip_score.h"
+#include "runner/slip_score.h"
 #include "common/atomic_output_file.h"
 #include "common/json_writer.h"
 #include "kinematics/leg_kinematics.h"
@@ -16,7 +16,7 @@
 #include "slam/eval/trajectory.h"
 #include "slam/lo/leg_odometry.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 // What the simulator knows at one encoder sample (metrics only).
 struct LoTruth {
@@ -60,4 +60,4 @@ class LoRun {
 // "LO: ATE 0.0123 m, drift 1.23% of path, yaw drift 2.1 deg; slip precision 0.90 recall 0.85 (20 true, 19 detected)"
 std::string LoSummaryLine(const LoSummary& s);
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

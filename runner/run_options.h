@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-namespace viqu::app {
+namespace viqu::runner {
 
 // What `viqu run` was asked to produce, besides the scenario itself.
 struct RunOptions {
@@ -15,4 +15,4 @@ struct RunOptions {
   bool report = false;  // plots into out_dir/plots after the run (--report)
 };
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -6,7 +6,7 @@
 #include "common/json_writer.h"
 #include "scenario/scenario.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 struct RunMetrics {
   double sim_time_s = 0;              // (s)
@@ -28,4 +28,4 @@ void AddRunMetrics(const Scenario& s, const RunMetrics& m, JsonWriter* j);
 // The metrics.json text of a run without SLAM.
 std::string MetricsJson(const Scenario& s, const RunMetrics& m);
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

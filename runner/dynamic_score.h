@@ -14,7 +14,7 @@
 #include "slam/core/dynamic_objects.h"
 #include "slam/measurements/stereo_frame.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 // What the simulator knows about one object in one frame.
 struct ObjectTruth {
@@ -61,4 +61,4 @@ class DynamicScore {
   std::map<std::string, ObjectTimeline> timelines_;  // by object name
 };
 
-}  // namespace viqu::app
+}  // namespace viqu::runner

@@ -1,4 +1,4 @@
-#include "apps/lo_run.h"
+#include "runner/lo_run.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include "common/atomic_file.h"
 #include "slam/eval/trajectory_error.h"
 
-namespace viqu::app {
+namespace viqu::runner {
 
 LoRun::LoRun(const slam::LegOdometrySettings& settings, const kin::LegKinematics& kin, const std::string& out_dir,
              int64_t t0_ns, const Eigen::Isometry3d& T_w_body0, const Eigen::Isometry3d& T_body_cam)
@@ -100,4 +100,4 @@ std::string LoSummaryLine(const LoSummary& s) {
   return buf;
 }
 
-}  // namespace viqu::app
+}  // namespace viqu::runner
