@@ -17,7 +17,7 @@ constexpr long long kMaxDeltaFrames = 1'000'000;
 
 const char* const kRunUsage =
     "viqu run SCENARIO.yaml [--out DIR] [--force] [--set key.path=value ...] [--no-slam] [--record] [--record-tum]\n"
-    "         [--video]\n"
+    "         [--video] [--report] [--sequential]\n"
     "    simulate the scenario, run SLAM live and write the run folder (default runs/NAME)\n"
     "    --out DIR        run folder; replaced as a whole when the run ends (an earlier run there is gone)\n"
     "    --force          let --out replace a non-empty folder that holds no viqu run\n"
@@ -26,7 +26,9 @@ const char* const kRunUsage =
     "    --record         also write an EuRoC-layout dataset under DIR/dataset\n"
     "    --record-tum     also write a TUM RGB-D dataset of the left camera under DIR/dataset_tum\n"
     "    --video          also write DIR/video.mp4\n"
-    "    --report         also plot the run into DIR/plots (viqu report)\n";
+    "    --report         also plot the run into DIR/plots (viqu report)\n"
+    "    --sequential     run the estimator on the simulation's thread instead of beside it (the same\n"
+    "                     outputs, slower: for comparison and profiling)\n";
 const char* const kSlamUsage =
     "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--camera FILE] [--out DIR] [--force]\n"
     "          [--masks DIR] [--set key.path=value ...]\n"
@@ -160,6 +162,9 @@ RunArgs ParseRun(ArgCursor* c) {
     } else if (arg == "--report") {
       c->NoValue(arg);
       a.options.report = true;
+    } else if (arg == "--sequential") {
+      c->NoValue(arg);
+      a.options.sequential = true;
     } else {
       UnknownOption("run", arg);
     }

@@ -12,6 +12,7 @@ struct RunOptions {
   bool record = false;  // write the EuRoC-layout dataset under out_dir/dataset (--record)
   bool record_tum = false;  // write a TUM RGB-D dataset under out_dir/dataset_tum (--record-tum)
   bool video = false;   // write out_dir/video.mp4 (--video)
+  bool sequential = false;  // --sequential: estimator on the simulation's thread (same outputs, slower)
   bool report = false;  // plots into out_dir/plots after the run (--report)
 };
 

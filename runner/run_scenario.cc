@@ -1,6 +1,9 @@
 #include "runner/run_scenario.h"
 
+#include <atomic>
 #include <chrono>
+#include <functional>
+#include <mutex>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -11,6 +14,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "runner/lo_run.h"
+#include "runner/ordered_worker.h"
 #include "runner/overlay_video.h"
 #include "runner/progress.h"
 #include "runner/robot_rig.h"
@@ -46,6 +50,41 @@ constexpr uint64_t kStreamSegmentation = 0x4444'0000'0000'0004ULL;
 constexpr uint64_t kStreamTouch = 0x5555'0000'0000'0005ULL;
 
 constexpr double kFallTiltRad = 60.0 * M_PI / 180.0;  // trunk tilt that counts as a fall
+
+// Camera frames that may wait for the estimator stage besides the one it works on: enough to
+// smooth a keyframe's mapping time against the renderer, and a bound on the memory (about 3 MB a
+// frame at 640x480). Not a tuning value: the outputs do not depend on it.
+constexpr size_t kFramesQueued = 2;
+// With robot.command.follow: estimate, the controller steers by the estimate of the camera frame
+// this many frames before the last one rendered: a fixed delay (one frame period), so that the
+// simulation never depends on how fast the estimator thread runs, which keeps the run
+// deterministic while the renderer works ahead of the estimator. Part of the loop's definition.
+constexpr int64_t kSteerDelayFrames = 1;
+
+// The estimator stage's body pose after each camera frame, for steering; only the latest few are
+// kept (frame k's is read while the stage may already write frame k + 1's).
+class SteerPoses {
+ public:
+  void Put(int64_t frame, const Eigen::Isometry3d& T_w_body) {
+    std::lock_guard<std::mutex> lock(mu_);
+    slots_[frame % kSlots] = {frame, T_w_body};
+  }
+  Eigen::Isometry3d Get(int64_t frame) const {
+    std::lock_guard<std::mutex> lock(mu_);
+    const Slot& s = slots_[frame % kSlots];
+    if (s.frame != frame) throw RunError("run loop: the estimate of frame " + std::to_string(frame) + " is not kept");
+    return s.T_w_body;
+  }
+
+ private:
+  static constexpr int64_t kSlots = 4;
+  struct Slot {
+    int64_t frame = -1;
+    Eigen::Isometry3d T_w_body = Eigen::Isometry3d::Identity();
+  };
+  mutable std::mutex mu_;
+  Slot slots_[kSlots];
+};
 
 // The sensor streams of one run: noise models and their clocks.
 struct Sensors {
@@ -163,13 +202,25 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   const int64_t end_ns = std::llround(s.duration_s * 1e9);
   Eigen::Vector3d last_p = world.GroundTruth().T_w_body.p_w_x;
   StereoFrame frame;
-  // The estimate the robot steers by with robot.command.follow: estimate: in mode full the fused
-  // filter (every IMU sample), otherwise the last frame's visual pose.
   const Eigen::Isometry3d T_cam_body = world.T_body_cam(false).inverse();
   // The contact readings the filters get (lo.contact; "estimated" needs none), decided once.
   const bool lo_touch = lo && settings->lo.contact == "touch";
   const bool lo_schedule = lo && settings->lo.contact == "schedule";
-  Eigen::Isometry3d visual_T_w_body = ToIsometry(world.GroundTruth().T_w_body);
+  // The estimator stage: everything that consumes the measurements (leg odometry, SLAM, the
+  // overlay video) runs on its own thread, one camera frame's worth of measurements per task, in
+  // the order the simulation produced them, while this thread steps the physics and renders the
+  // next frame (runner/ordered_worker.h). --sequential runs the tasks inline instead; the outputs
+  // are the same bytes either way.
+  OrderedWorker estimator(kFramesQueued, opt.sequential);
+  std::vector<std::function<void()>> measured;  // the estimator's share since the last camera frame
+  std::atomic<const char*> track_note{""};      // the last frame's tracking status, for the progress line
+  // With robot.command.follow: estimate the robot steers by the estimate of the camera frame before
+  // the last one (kSteerDelayFrames): the body pose in the fused filter (mode full) or from the
+  // visual pose, as the estimator stage had it after that frame. Before that estimate exists it
+  // steers by the pose the estimator is anchored at.
+  SteerPoses steer_poses;
+  ctrl::Pose2 steer_pose = Pose2Of(ToIsometry(world.GroundTruth().T_w_body));
+  int64_t frame_index = 0;
   int stop_signal = 0;
   while (true) {
     const int64_t t_ns = world.time_ns();
@@ -177,8 +228,12 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     if (sensors.imu_clock.Due(t_ns)) {
       const ImuSample imu = sensors.imu.Measure(t_ns, world.TrueAccel(), world.TrueGyro());
       if (recorder) recorder->AddImu(imu);
-      if (lo) lo->AddImu(imu);
-      if (fused_lo) fused_lo->AddImu(imu);
+      if (lo) {
+        measured.push_back([&lo, &fused_lo, imu] {
+          lo->AddImu(imu);
+          fused_lo->AddImu(imu);
+        });
+      }
     }
     if (sensors.joint_clock.Due(t_ns)) {
       const JointState js = sensors.joints.Measure(t_ns, world.JointPositions(), world.JointVelocities(),
@@ -190,20 +245,24 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       std::optional<ContactReading> touch;
       if (recorder || lo_touch) touch = sensors.touch.Measure(t_ns, world.FootNormalForces());
       if (recorder) recorder->AddContact(t_ns, touch->stance, planned.stance);
-      if (lo_touch || lo_schedule) {
-        const ContactReading& contact = lo_touch ? *touch : planned;
-        lo->AddContact(contact);
-        fused_lo->AddContact(contact);
-      }
       if (lo) {
-        fused_lo->AddJoints(js);
+        std::optional<ContactReading> contact;
+        if (lo_touch || lo_schedule) contact = lo_touch ? *touch : planned;
         LoTruth truth;
         truth.contact = js.contact;  // the encoder model passes the simulator's contacts through
         const GroundTruthState gt = world.GroundTruth();
         truth.p_w_body = gt.T_w_body.p_w_x;
         truth.vel_w_body = gt.vel_w_body;
         for (int i = 0; i < kNumLegs; ++i) truth.sole_speed_mps[i] = world.FootSoleVelocityWorld(static_cast<Leg>(i)).norm();
-        lo->AddJoints(js, sensors.joint_clock.period_ns(), truth);
+        const int64_t period_ns = sensors.joint_clock.period_ns();
+        measured.push_back([&lo, &fused_lo, contact, js, truth, period_ns] {
+          if (contact) {
+            lo->AddContact(*contact);
+            fused_lo->AddContact(*contact);
+          }
+          fused_lo->AddJoints(js);
+          lo->AddJoints(js, period_ns, truth);
+        });
       }
     }
     if (sensors.camera_clock.Due(t_ns)) {
@@ -232,14 +291,6 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
       const GroundTruthState gt = world.GroundTruth();
       gt_out.Add(gt.T_w_cam);
       gt_cam.push_back(gt.T_w_cam);
-      if (lo) lo->AddFrame(t_ns);
-      std::optional<slam::TrackResult> track;
-      if (slam) {
-        track = slam->Track(frame, &truth);
-        visual_T_w_body = track->T_w_c * T_cam_body;
-        metrics.track_ms.push_back(track->track_ms);
-        progress.SetNote(slam::TrackStatusName(track->status));
-      }
       metrics.path_length_m += (gt.T_w_body.p_w_x - last_p).head<2>().norm();
       last_p = gt.T_w_body.p_w_x;
       ++metrics.frames;
@@ -251,9 +302,30 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
         tum_recorder->AddFrame(frame);
         tum_recorder->AddGroundTruth(gt);
       }
-      if (video) {
-        const double error_m = track ? (track->T_w_c.translation() - gt.T_w_cam.p_w_x).norm() : -1;
-        video->Add(frame, track ? &*track : nullptr, error_m);
+      // The frame goes to the estimator stage with the measurements before it; the renderer
+      // makes new images for the next frame.
+      const int64_t index = frame_index++;
+      estimator.Post([&, index, t_ns, measured = std::move(measured), frame = std::move(frame),
+                      truth = std::move(truth), p_w_cam = gt.T_w_cam.p_w_x] {
+        for (const std::function<void()>& m : measured) m();
+        if (lo) lo->AddFrame(t_ns);
+        std::optional<slam::TrackResult> track;
+        if (slam) {
+          track = slam->Track(frame, &truth);
+          metrics.track_ms.push_back(track->track_ms);
+          track_note = slam::TrackStatusName(track->status);
+        }
+        if (video) {
+          const double error_m = track ? (track->T_w_c.translation() - p_w_cam).norm() : -1;
+          video->Add(frame, track ? &*track : nullptr, error_m);
+        }
+        if (steer_by_estimate) steer_poses.Put(index, fused_lo ? fused_lo->T_w_body() : track->T_w_c * T_cam_body);
+      });
+      measured = {};
+      frame = StereoFrame();
+      if (steer_by_estimate && index >= kSteerDelayFrames) {
+        estimator.WaitUntil(static_cast<uint64_t>(index - kSteerDelayFrames));
+        steer_pose = Pose2Of(steer_poses.Get(index - kSteerDelayFrames));
       }
     }
     if (world.TrunkTiltRad() > kFallTiltRad || world.TrunkTouchesGround()) metrics.fell = true;
@@ -261,13 +333,17 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     // A stop request (SIGINT, SIGTERM) ends the run here, between two physics steps: every
     // sample and frame so far is processed, and the outputs are finished as at the end.
     if ((stop_signal = StopSignal()) != 0) break;
-    if (steer_by_estimate) {
-      rig.Step(Pose2Of(fused_lo ? fused_lo->T_w_body() : visual_T_w_body));
-    } else {
-      rig.Step(rig.TruePose2());
-    }
+    rig.Step(steer_by_estimate ? steer_pose : rig.TruePose2());
+    progress.SetNote(track_note.load());
     progress.Update(world.data()->time);
   }
+  // The measurements after the last frame, then wait for the stage to finish everything.
+  if (!measured.empty()) {
+    estimator.Post([measured = std::move(measured)] {
+      for (const std::function<void()>& m : measured) m();
+    });
+  }
+  estimator.Finish();
   progress.Finish();
 
   gt_out.Close();
