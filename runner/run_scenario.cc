@@ -150,8 +150,11 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   sim::RenderOptions ropt;
   ropt.width = s.sensors.camera.width;
   ropt.height = s.sensors.camera.height;
-  ropt.depth = s.sensors.camera.depth;
-  ropt.segmentation = s.sensors.camera.segmentation;
+  // Render only what this run consumes (each pass costs render time): depth for a recording or
+  // rgbd tracking (stereo tracking finds its own depth); the instance image for the estimator
+  // (dynamic stage, dynamic.csv truth), a recording or the video.
+  ropt.depth = s.sensors.camera.depth && (opt.record || opt.record_tum || (opt.slam && settings->input == "rgbd"));
+  ropt.segmentation = s.sensors.camera.segmentation && (opt.slam || opt.record || opt.video);
   sim::StereoRenderer renderer(world.model(), ropt);
   Sensors sensors(s);
 
@@ -188,7 +191,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   }
   std::unique_ptr<sim::TumRecorder> tum_recorder;
   if (opt.record_tum) {
-    if (!ropt.depth) throw InputError(s.source_file + ": --record-tum needs depth (sensors.camera.depth: true)");
+    if (!s.sensors.camera.depth) throw InputError(s.source_file + ": --record-tum needs depth (sensors.camera.depth: true)");
     tum_recorder = std::make_unique<sim::TumRecorder>(out + "/dataset_tum", renderer.intrinsics());
   }
   std::unique_ptr<OverlayVideo> video;
