@@ -59,6 +59,9 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   json->Set("timing.dynamic_ms_median", Median(st.dynamic_ms));
   json->Set("timing.dynamic_ms_p95", Percentile(st.dynamic_ms, 0.95));
   json->Set("tracking.object_points_erased", st.object_points_erased);
+  json->Set("tracking.keyframes_freed", st.keyframes_freed);
+  json->Set("tracking.map_points_freed", st.map_points_freed);
+  json->Set("tracking.map_points_held", st.map_points_held);
   json->Set("slam.mode", system_.settings().mode);
   json->Set("slam.dynamic_method", system_.settings().dynamic.method);
   json->Set("slam.input", system_.settings().input);

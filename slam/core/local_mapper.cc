@@ -76,6 +76,14 @@ void LocalMapper::WaitIdle() {
   idle_cv_.wait(lock, [this] { return queue_.empty() && !busy_; });
 }
 
+bool LocalMapper::PinnedIfIdle(std::vector<const KeyFrame*>* keyframes, std::vector<const MapPoint*>* points) const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  if (busy_ || !queue_.empty()) return false;
+  keyframes->insert(keyframes->end(), queue_.begin(), queue_.end());
+  points->insert(points->end(), recent_.begin(), recent_.end());
+  return true;
+}
+
 size_t LocalMapper::Queued() const {
   std::lock_guard<std::mutex> lock(queue_mutex_);
   return queue_.size() + (busy_ ? 1 : 0);

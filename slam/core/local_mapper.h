@@ -38,6 +38,11 @@ class LocalMapper {
   // Points created for `kf` at its creation (the stereo points), to be watched by culling.
   void AddRecentPoints(const std::vector<MapPoint*>& points);
 
+  // When mapping is idle (always in sync mode; in realtime mode when nothing is queued or being
+  // processed, which stays so until the next Insert from the caller's thread), adds the keyframes
+  // and points it holds (queue, probation list) and returns true; returns false while it works.
+  bool PinnedIfIdle(std::vector<const KeyFrame*>* keyframes, std::vector<const MapPoint*>* points) const;
+
   const std::vector<double>& ba_ms() const { return ba_ms_; }
 
  private:

@@ -3,20 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
+#include <unordered_set>
+
+#include "slam/features/hamming.h"
 
 namespace viqu::slam {
 
-int DescriptorDistance(const uint8_t* a, const uint8_t* b) {
-  int d = 0;
-  for (int i = 0; i < 32; i += 8) {
-    uint64_t x, y;
-    std::memcpy(&x, a + i, 8);
-    std::memcpy(&y, b + i, 8);
-    d += __builtin_popcountll(x ^ y);
-  }
-  return d;
-}
+int DescriptorDistance(const uint8_t* a, const uint8_t* b) { return HammingDistance(a, b, 32); }
 
 int DescriptorDistance(const cv::Mat& a, const cv::Mat& b) { return DescriptorDistance(a.ptr<uint8_t>(), b.ptr<uint8_t>()); }
 
@@ -121,12 +116,12 @@ int KeyFrame::TrackedPoints(int min_observations) const {
 }
 
 KeyFrame* Map::AddKeyFrame(const Frame& frame) {
-  keyframes_.push_back(std::make_unique<KeyFrame>(static_cast<int64_t>(keyframes_.size()), frame));
+  keyframes_.push_back(std::make_unique<KeyFrame>(next_keyframe_id_++, frame));
   return keyframes_.back().get();
 }
 
 MapPoint* Map::AddPoint(const Eigen::Vector3d& p_w, KeyFrame* ref) {
-  points_.push_back(std::make_unique<MapPoint>(static_cast<int64_t>(points_.size()), p_w, ref));
+  points_.push_back(std::make_unique<MapPoint>(next_point_id_++, p_w, ref));
   points_.back()->first_keyframe_id = ref->id;
   return points_.back().get();
 }
@@ -189,6 +184,40 @@ void Map::EraseKeyFrame(KeyFrame* kf, int min_shared) {
     if (MapPoint* p = kf->points[i]) EraseObservation(p, kf);
   }
   for (KeyFrame* n : neighbours) n->UpdateConnections(min_shared);
+}
+
+size_t Map::Reclaim(const std::vector<const KeyFrame*>& pinned_keyframes, const std::vector<const MapPoint*>& pinned_points) {
+  const std::unordered_set<const KeyFrame*> kf_pins(pinned_keyframes.begin(), pinned_keyframes.end());
+  const std::unordered_set<const MapPoint*> point_pins(pinned_points.begin(), pinned_points.end());
+  std::unordered_set<const KeyFrame*> freed_kfs;
+  for (const auto& kf : keyframes_) {
+    if (kf->bad && !kf_pins.count(kf.get())) freed_kfs.insert(kf.get());
+  }
+  // Nothing that stays may point at a freed keyframe: a bad keyframe has no observations and is
+  // in no good keyframe's covisibility (EraseKeyFrame); only map points' `reference` and kept
+  // (pinned) bad keyframes' covisibility can still name it.
+  for (const auto& p : points_) {
+    if (freed_kfs.count(p->reference)) p->reference = nullptr;
+  }
+  for (const auto& kf : keyframes_) {
+    if (freed_kfs.count(kf.get())) continue;
+    for (auto it = kf->covisible.begin(); it != kf->covisible.end();) {
+      it = freed_kfs.count(it->first) ? kf->covisible.erase(it) : std::next(it);
+    }
+  }
+  const size_t kfs_before = keyframes_.size(), points_before = points_.size();
+  keyframes_.erase(std::remove_if(keyframes_.begin(), keyframes_.end(),
+                                  [&](const std::unique_ptr<KeyFrame>& kf) { return freed_kfs.count(kf.get()) > 0; }),
+                   keyframes_.end());
+  // A bad point has no observations (ErasePoint, Replace, EraseObservation of the last one), so no
+  // keyframe holds it.
+  points_.erase(std::remove_if(points_.begin(), points_.end(),
+                               [&](const std::unique_ptr<MapPoint>& p) { return p->bad && !point_pins.count(p.get()); }),
+                points_.end());
+  const size_t kfs = kfs_before - keyframes_.size(), points = points_before - points_.size();
+  keyframes_freed_ += static_cast<int64_t>(kfs);
+  points_freed_ += static_cast<int64_t>(points);
+  return kfs + points;
 }
 
 int Map::GoodKeyFrames() const {

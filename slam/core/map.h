@@ -1,7 +1,9 @@
 #pragma once
 // The map: keyframes, map points and the covisibility between keyframes. The Map owns every
-// object; culled ones are flagged `bad` and stay allocated until the map is destroyed, so that
-// pointers held by frames never dangle. All access happens under Map::mutex.
+// object. Culled ones are flagged `bad` and stay allocated while anything outside the map's own
+// links may still hold them (the tracker's frames and local map, the mapper's queue and probation
+// list); Reclaim() frees the rest, so a long run's memory stays bounded. All access happens under
+// Map::mutex.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -94,6 +96,14 @@ class Map {
   // Flags the keyframe bad, drops its observations and reconnects its neighbours.
   void EraseKeyFrame(KeyFrame* kf, int min_shared);
 
+  // Frees every bad keyframe and map point that is not pinned (held by the tracker or the mapper:
+  // SlamSystem collects them). Good points whose reference keyframe is freed forget it (as for a
+  // bad reference). The order of the remaining objects is kept, and ids keep counting, so the
+  // results do not change. Returns the number of objects freed.
+  size_t Reclaim(const std::vector<const KeyFrame*>& pinned_keyframes, const std::vector<const MapPoint*>& pinned_points);
+  int64_t keyframes_freed() const { return keyframes_freed_; }
+  int64_t points_freed() const { return points_freed_; }
+
   const std::vector<std::unique_ptr<KeyFrame>>& keyframes() const { return keyframes_; }
   const std::vector<std::unique_ptr<MapPoint>>& points() const { return points_; }
   int GoodKeyFrames() const;
@@ -102,6 +112,8 @@ class Map {
  private:
   std::vector<std::unique_ptr<KeyFrame>> keyframes_;
   std::vector<std::unique_ptr<MapPoint>> points_;
+  int64_t next_keyframe_id_ = 0, next_point_id_ = 0;
+  int64_t keyframes_freed_ = 0, points_freed_ = 0;
 };
 
 // Hamming distance of two 32-byte descriptors.

@@ -9,6 +9,13 @@
 #include "slam/core/tracker.h"
 
 namespace viqu::slam {
+namespace {
+
+// Frames between two Map::Reclaim calls. Housekeeping, not a decision: freeing culled objects
+// changes no result, only how long they stay allocated (about a second at 20 Hz).
+constexpr int kReclaimEveryFrames = 20;
+
+}  // namespace
 
 const char* TrackStatusName(TrackStatus s) {
   switch (s) {
@@ -86,6 +93,17 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
     m.tracker.SetCamera(frame);
     m.mapper = std::make_unique<LocalMapper>(m.tracker.camera(), m.settings, &m.map);
     m.dynamic = std::make_unique<DynamicObjects>(m.settings, m.tracker.camera());
+  }
+  // Free the culled keyframes and map points that nothing holds any more (Map::Reclaim), once a
+  // second at 20 Hz: a long run's memory stays bounded, and the results are the same.
+  if (m.stats.frames % kReclaimEveryFrames == 0) {
+    std::lock_guard<std::mutex> lock(m.map.mutex);
+    std::vector<const KeyFrame*> pinned_keyframes;
+    std::vector<const MapPoint*> pinned_points;
+    if (m.mapper->PinnedIfIdle(&pinned_keyframes, &pinned_points)) {
+      m.tracker.Pinned(&pinned_keyframes, &pinned_points);
+      m.map.Reclaim(pinned_keyframes, pinned_points);
+    }
   }
   using Clock = std::chrono::steady_clock;
   auto ms_since = [](Clock::time_point a) { return std::chrono::duration<double, std::milli>(Clock::now() - a).count(); };
@@ -166,6 +184,10 @@ SlamStats SlamSystem::Stats() const {
   std::lock_guard<std::mutex> lock(impl_->map.mutex);
   s.keyframes = impl_->map.GoodKeyFrames();
   s.map_points = impl_->map.GoodPoints();
+  s.keyframes_freed = impl_->map.keyframes_freed();
+  s.map_points_freed = impl_->map.points_freed();
+  s.keyframes_held = static_cast<int64_t>(impl_->map.keyframes().size());
+  s.map_points_held = static_cast<int64_t>(impl_->map.points().size());
   if (impl_->mapper) s.local_ba_ms = impl_->mapper->ba_ms();
   return s;
 }

@@ -366,6 +366,14 @@ bool Tracker::TrackWithMotionModel() {
   return best >= settings_.tracking.min_inliers_motion;
 }
 
+void Tracker::Pinned(std::vector<const KeyFrame*>* keyframes, std::vector<const MapPoint*>* points) const {
+  keyframes->push_back(reference_);
+  keyframes->push_back(pending_keyframe_);
+  keyframes->insert(keyframes->end(), local_keyframes_.begin(), local_keyframes_.end());
+  points->insert(points->end(), local_points_.begin(), local_points_.end());
+  for (const Frame* f : {&cur_, &last_}) points->insert(points->end(), f->points.begin(), f->points.end());
+}
+
 bool Tracker::TrackReferenceKeyFrame() {
   if (!reference_ || reference_->bad) {
     for (auto it = map_->keyframes().rbegin(); it != map_->keyframes().rend(); ++it) {

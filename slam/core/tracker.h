@@ -52,6 +52,9 @@ class Tracker {
   const std::vector<uint8_t>& LastFeatureFates() const { return last_fates_; }
   // Positions of the local map's good points (map frame, m) after the last Track().
   std::vector<Eigen::Vector3d> LocalMapPointPositions() const;
+  // Every keyframe and map point the tracker holds between frames (reference, pending keyframe,
+  // local map, the last and current frames' matches): Map::Reclaim must keep them.
+  void Pinned(std::vector<const KeyFrame*>* keyframes, std::vector<const MapPoint*>* points) const;
   KeyFrame* TakePendingKeyFrame() {
     KeyFrame* kf = pending_keyframe_;
     pending_keyframe_ = nullptr;

@@ -3,30 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "slam/features/hamming.h"
+
 namespace viqu::slam {
 namespace {
 
-// Hamming distance between row `ra` of `a` and row `rb` of `b` (8-bit descriptors of equal
-// length): 64 bits at a time (cv::norm on row headers cost more than the count itself).
 int Hamming(const cv::Mat& a, int ra, const cv::Mat& b, int rb) {
-  const uint8_t* pa = a.ptr<uint8_t>(ra);
-  const uint8_t* pb = b.ptr<uint8_t>(rb);
-  const int n = a.cols;
-  int d = 0, k = 0;
-  for (; k + 8 <= n; k += 8) {
-    uint64_t x, y;
-    std::memcpy(&x, pa + k, 8);
-    std::memcpy(&y, pb + k, 8);
-    d += __builtin_popcountll(x ^ y);
-  }
-  for (; k < n; ++k) d += __builtin_popcount(static_cast<unsigned>(pa[k] ^ pb[k]));
-  return d;
+  return HammingDistance(a.ptr<uint8_t>(ra), b.ptr<uint8_t>(rb), a.cols);
 }
 
 // SAD between a (2h+1)^2 patch of `l` centred at (xl, y) and of `r` centred at (xr, y); integer
