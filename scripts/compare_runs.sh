@@ -15,7 +15,7 @@ while IFS= read -r -d '' f; do
   esac
   if [[ ! -e "$b/$rel" ]]; then echo "only in $a: $rel"; status=1; continue; fi
   case "$rel" in
-    metrics.json) cmp -s <(strip_metrics "$f") <(strip_metrics "$b/$rel") || { echo "differs: $rel"; diff <(strip_metrics "$f") <(strip_metrics "$b/$rel") | head -5; status=1; } ;;
+    metrics.json) cmp -s <(strip_metrics "$f") <(strip_metrics "$b/$rel") || { echo "differs: $rel"; diff <(strip_metrics "$f") <(strip_metrics "$b/$rel") | head -5 || true; status=1; } ;;
     tracking.csv) cmp -s <(strip_tracking "$f") <(strip_tracking "$b/$rel") || { echo "differs: $rel"; status=1; } ;;
     *) cmp -s "$f" "$b/$rel" || { echo "differs: $rel"; status=1; } ;;
   esac

@@ -10,12 +10,20 @@ namespace viqu::slam {
 void FrameFeatures::BuildGrid(int width, int height) {
   grid_cols = (width + kCellPx - 1) / kCellPx;
   grid_rows = (height + kCellPx - 1) / kCellPx;
-  grid.assign(static_cast<size_t>(grid_cols) * grid_rows, {});
+  const size_t cells = static_cast<size_t>(grid_cols) * grid_rows;
+  std::vector<int> cell_of(keypoints.size());
+  grid_start.assign(cells + 1, 0);
   for (size_t i = 0; i < keypoints.size(); ++i) {
     const int cx = std::clamp(static_cast<int>(keypoints[i].pt.x / kCellPx), 0, grid_cols - 1);
     const int cy = std::clamp(static_cast<int>(keypoints[i].pt.y / kCellPx), 0, grid_rows - 1);
-    grid[cy * grid_cols + cx].push_back(static_cast<int>(i));
+    cell_of[i] = cy * grid_cols + cx;
+    ++grid_start[cell_of[i] + 1];
   }
+  for (size_t c = 0; c < cells; ++c) grid_start[c + 1] += grid_start[c];
+  // Counting sort: each cell's features in increasing index, as a list per cell would hold them.
+  grid_index.resize(keypoints.size());
+  std::vector<int> next(grid_start.begin(), grid_start.end() - 1);
+  for (size_t i = 0; i < keypoints.size(); ++i) grid_index[next[cell_of[i]]++] = static_cast<int>(i);
 }
 
 std::vector<int> FrameFeatures::InArea(double u, double v, double radius, int min_level, int max_level) const {
@@ -27,7 +35,9 @@ std::vector<int> FrameFeatures::InArea(double u, double v, double radius, int mi
   const double r2 = radius * radius;
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
-      for (int i : grid[y * grid_cols + x]) {
+      const int cell = y * grid_cols + x;
+      for (int k = grid_start[cell]; k < grid_start[cell + 1]; ++k) {
+        const int i = grid_index[k];
         const cv::KeyPoint& kp = keypoints[i];
         if (min_level >= 0 && kp.octave < min_level) continue;
         if (max_level >= 0 && kp.octave > max_level) continue;

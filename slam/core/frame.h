@@ -29,7 +29,9 @@ struct FrameFeatures {
   std::vector<float> level_sigma2;     // squared scale of each pyramid level
   std::vector<float> level_scale;      // scale of each pyramid level
   int grid_cols = 0, grid_rows = 0;
-  std::vector<std::vector<int>> grid;  // feature indices per cell, row-major
+  // Feature indices per cell, row-major, in one array: cell c holds
+  // grid_index[grid_start[c] .. grid_start[c + 1]) (a list per cell cost about 60 kB a keyframe).
+  std::vector<int> grid_start, grid_index;
 
   size_t size() const { return keypoints.size(); }
   void BuildGrid(int width, int height);
