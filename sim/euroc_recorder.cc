@@ -24,7 +24,7 @@ const char* const kJointNames[kNumJoints] = {"FL_hip", "FL_knee", "FR_hip", "FR_
                                              "BL_hip", "BL_knee", "BR_hip", "BR_knee"};
 const char* const kFootNames[kNumLegs] = {"FL", "FR", "BL", "BR"};
 // depth0 PNG unit: 1/5000 m, the steps that the live run quantises its depth to (TUM's depth
-// scale, apps/run_scenario.cc), so that a recorded depth image replays bit for bit and an rgbd
+// scale, runner/run_scenario.cc), so that a recorded depth image replays bit for bit and an rgbd
 // replay of the recording tracks exactly as the live run did. The range, 13.1 m, is the live
 // depth's own: beyond it there is no depth live either.
 constexpr double kDepthStepsPerM = TumRecorder::kDepthScale;

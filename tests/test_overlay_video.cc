@@ -1,4 +1,4 @@
-// The overlay video (apps/overlay_video.h): feature colours by fate, tinted masks with labels,
+// The overlay video (runner/overlay_video.h): feature colours by fate, tinted masks with labels,
 // the status corner; and a written video that reads back with every frame.
 #include <filesystem>
 
