@@ -64,8 +64,15 @@ const char* const kReportUsage =
     "    time and the dynamic-object timeline; for a sweep folder a heatmap of M over the grid keys\n"
     "    --x and --y, or a line over --x with the seeds' spread\n";
 const char* const kViewUsage =
-    "viqu view SCENARIO.yaml [--set key.path=value ...]\n"
-    "    show the scenario in a window (GLFW)\n";
+    "viqu view SCENARIO.yaml [--out DIR] [--force] [--set key.path=value ...] [--no-slam] [--speed X]\n"
+    "          [--paused] [--exit-at-end] [--screenshot FILE]\n"
+    "    run the scenario as `viqu run` does (same run folder, default runs/<name>-view) and show it\n"
+    "    in a window (GLFW; needs a display): the world from a camera following the robot, the\n"
+    "    ground-truth and SLAM paths, the map points, the camera image with SLAM's overlays\n"
+    "    --speed X        simulated seconds per second (default 1; 0: as fast as it runs)\n"
+    "    --paused         start paused (space resumes, n steps one frame)\n"
+    "    --exit-at-end    close the window when the run ends (default: it stays until closed)\n"
+    "    --screenshot F   write the window's last picture to F (PNG) when the viewer ends\n";
 
 // Walks over one subcommand's arguments: options (with values) and positionals.
 class ArgCursor {
@@ -323,6 +330,30 @@ ViewArgs ParseView(ArgCursor* c) {
     } else if (arg == "--set") {
       a.sets.push_back(c->TakeValue(arg));
       CheckSet("view", a.sets.back());
+    } else if (arg == "--out") {
+      a.options.out_dir = c->TakeValue(arg);
+    } else if (arg == "--force") {
+      c->NoValue(arg);
+      a.options.force = true;
+    } else if (arg == "--no-slam") {
+      c->NoValue(arg);
+      a.options.slam = false;
+    } else if (arg == "--speed") {
+      const std::string v = c->TakeValue(arg);
+      char* end = nullptr;
+      const double x = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(x >= 0) || !std::isfinite(x)) {
+        throw UsageError("view: --speed expects a number >= 0 (simulated seconds per second; 0: as fast as it runs), got '" + v + "'");
+      }
+      a.speed = x;
+    } else if (arg == "--paused") {
+      c->NoValue(arg);
+      a.paused = true;
+    } else if (arg == "--exit-at-end") {
+      c->NoValue(arg);
+      a.exit_at_end = true;
+    } else if (arg == "--screenshot") {
+      a.screenshot = c->TakeValue(arg);
     } else {
       UnknownOption("view", arg);
     }

@@ -52,10 +52,16 @@ struct ReportArgs {
   std::vector<std::string> tool_args;  // --x/--y/--metric, passed on to tools/report.py
 };
 
-// `viqu view SCENARIO.yaml [--set key.path=value ...]`
+// `viqu view SCENARIO.yaml [--out DIR] [--force] [--set key.path=value ...] [--no-slam] [--speed X] [--paused]
+//  [--exit-at-end] [--screenshot FILE]`: the run of `viqu run` (same outputs) shown in a window.
 struct ViewArgs {
   std::string scenario;           // scenario YAML path
   std::vector<std::string> sets;  // overrides, as for run
+  runner::RunOptions options;     // out_dir empty when --out was not given (then runs/<name>-view)
+  double speed = 1.0;             // simulated s per wall s; 0 = as fast as it goes
+  bool paused = false;            // start paused
+  bool exit_at_end = false;       // close the window when the run ends
+  std::string screenshot;         // PNG of the window when the viewer ends; empty = none
 };
 
 enum class Command { kHelp, kRun, kSlam, kEval, kSweep, kReport, kView };

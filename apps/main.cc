@@ -14,6 +14,7 @@
 #include "apps/slam_command.h"
 #include "apps/sweep_command.h"
 #include "apps/usage_error.h"
+#include "apps/view_command.h"
 #include "common/errors.h"
 #include "common/stop_signal.h"
 #include "scenario/scenario_loader.h"
@@ -24,11 +25,6 @@ namespace {
 constexpr int kExitOk = 0;
 constexpr int kExitRunFailed = 1;
 constexpr int kExitBadInput = 2;
-
-int NotImplemented(const std::string& command) {
-  std::fprintf(stderr, "viqu: '%s' is not implemented yet\n", command.c_str());
-  return kExitBadInput;
-}
 
 // This program's own file: sweeps start it once per point.
 std::string SelfPath() {
@@ -61,7 +57,7 @@ int Dispatch(const CliArgs& args) {
     case Command::kEval: return RunEval(args.eval);
     case Command::kSweep: return RunSweepCommand(args.sweep, SelfPath());
     case Command::kReport: return RunReport(args.report.dir, args.report.tool_args);
-    case Command::kView: return NotImplemented("view");
+    case Command::kView: return RunViewCommand(args.view, args.command_line);
   }
   return kExitBadInput;
 }

@@ -119,7 +119,7 @@ sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const Pinhole
 
 }  // namespace
 
-int RunScenario(const Scenario& s, const RunOptions& opt) {
+int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer) {
   const auto wall_start = std::chrono::steady_clock::now();
   if (s.robot.command.follow == "estimate" && !opt.slam) {
     throw InputError(s.source_file + ": robot.command.follow: estimate needs the estimator; it cannot run with --no-slam");
@@ -197,8 +197,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   std::unique_ptr<OverlayVideo> video;
   if (opt.video) {
     video = std::make_unique<OverlayVideo>(out + "/video.mp4", s.sensors.camera.rate_hz, ropt.width, ropt.height);
-    if (slam) slam->SetRecordFeatures(true);
   }
+  // The overlays (video, viewer) show every feature's fate; recording it changes no output.
+  if (slam && (video || observer)) slam->SetRecordFeatures(true);
   sim::TrajectoryWriter gt_out(out + "/trajectory_gt.txt");
 
   ProgressLine progress(s.duration_s);
@@ -214,7 +215,10 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   // the order the simulation produced them, while this thread steps the physics and renders the
   // next frame (runner/ordered_worker.h). --sequential runs the tasks inline instead; the outputs
   // are the same bytes either way.
-  OrderedWorker estimator(kFramesQueued, opt.sequential);
+  // An observer looks at the simulation and the estimator together: the stage runs inline then.
+  OrderedWorker estimator(kFramesQueued, opt.sequential || observer != nullptr);
+  bool observer_stop = false;     // the observer asked to end the run (a viewer closed)
+  ObservedFrame observed;         // the last frame the observer saw
   std::vector<std::function<void()>> measured;  // the estimator's share since the last camera frame
   std::atomic<const char*> track_note{""};      // the last frame's tracking status, for the progress line
   // With robot.command.follow: estimate the robot steers by the estimate of the camera frame before
@@ -323,6 +327,12 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
           video->Add(frame, track ? &*track : nullptr, error_m);
         }
         if (steer_by_estimate) steer_poses.Put(index, fused_lo ? fused_lo->T_w_body() : track->T_w_c * T_cam_body);
+        if (observer) {  // inline: this is the simulation thread, and the world is at t_ns
+          observed = {index, t_ns * 1e-9, s.duration_s, &world, &frame, track ? &*track : nullptr, slam.get(), &gt_cam};
+          observer_stop = !observer->OnFrame(observed);
+          observed.frame = nullptr;
+          observed.track = nullptr;
+        }
       });
       measured = {};
       frame = StereoFrame();
@@ -335,7 +345,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
     if (t_ns >= end_ns || (metrics.fell && !s.robot.allow_fall)) break;
     // A stop request (SIGINT, SIGTERM) ends the run here, between two physics steps: every
     // sample and frame so far is processed, and the outputs are finished as at the end.
-    if ((stop_signal = StopSignal()) != 0) break;
+    if ((stop_signal = StopSignal()) != 0 || observer_stop) break;
     rig.Step(steer_by_estimate ? steer_pose : rig.TruePose2());
     progress.SetNote(track_note.load());
     progress.Update(world.data()->time);
@@ -364,6 +374,16 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
   WriteFileAtomic(out + "/metrics.json", json.ToString());
 
   const int exit_code = metrics.fell && !s.robot.allow_fall ? 1 : 0;
+  if (observer_stop && stop_signal == 0) {
+    char reason[128];
+    std::snprintf(reason, sizeof(reason), "the viewer closed at simulated time %.3f s of %.3f s", metrics.sim_time_s,
+                  s.duration_s);
+    folder.Interrupted(reason);
+    std::fprintf(stderr, "viqu: run ended early: %s; %s holds the outputs so far, marked incomplete (%s)\n", reason,
+                 folder.final_path().c_str(), kRunIncompleteMarker);
+    observer->OnRunEnd(observed);
+    return 0;
+  }
   if (stop_signal != 0) {
     char reason[128];
     std::snprintf(reason, sizeof(reason), "%s at simulated time %.3f s of %.3f s", SignalName(stop_signal),
@@ -385,6 +405,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt) {
               slam ? ",trajectory_est.txt,tracking.csv,slam_settings.yaml" : "",
               recorder ? (tum_recorder ? ",dataset/,dataset_tum/" : ",dataset/") : (tum_recorder ? ",dataset_tum/" : ""),
               video ? ",video.mp4" : "");
+  if (observer) observer->OnRunEnd(observed);
   return exit_code;
 }
 

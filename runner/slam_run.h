@@ -45,6 +45,8 @@ class SlamRun {
   SlamSummary Finish(const eval::Trajectory& gt, double path_length_m, JsonWriter* json);
 
   const eval::Trajectory& estimate() const { return est_; }
+  // The estimator itself (map points and keyframes for a viewer).
+  const slam::SlamSystem& system() const { return system_; }
 
   // slam.mode full: leg odometry + IMU gives each frame's motion prior and is corrected by the
   // frames tracked well (not owned; null: vision alone).

@@ -202,6 +202,17 @@ std::vector<SlamSystem::KeyFrameInfo> SlamSystem::KeyFrames() const {
   return out;
 }
 
+std::vector<SlamSystem::MapPointInfo> SlamSystem::MapPoints() const {
+  std::lock_guard<std::mutex> lock(impl_->map.mutex);
+  std::vector<MapPointInfo> out;
+  out.reserve(impl_->map.points().size());
+  for (const auto& p : impl_->map.points()) {
+    if (p->bad) continue;
+    out.push_back({impl_->world_from_map * p->p_w, p->object});
+  }
+  return out;
+}
+
 const SlamSettings& SlamSystem::settings() const { return impl_->settings; }
 
 }  // namespace viqu::slam

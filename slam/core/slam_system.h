@@ -104,6 +104,13 @@ class SlamSystem {
     bool fixed = false;  // held constant in bundle adjustment (the first keyframe of each map segment)
   };
   std::vector<KeyFrameInfo> KeyFrames() const;
+
+  // The map points in the map now (culled ones left out), in the output world frame: for viewers.
+  struct MapPointInfo {
+    Eigen::Vector3d p_w = Eigen::Vector3d::Zero();  // (m)
+    uint16_t object = 0;  // segmentation instance of the feature that created it (0 = none)
+  };
+  std::vector<MapPointInfo> MapPoints() const;
   const SlamSettings& settings() const;
 
  private:
