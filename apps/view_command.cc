@@ -21,6 +21,7 @@ int RunViewCommand(const ViewArgs& args, const std::string& command_line) {
   vopt.start_paused = args.paused;
   vopt.exit_at_end = args.exit_at_end;
   vopt.screenshot_path = args.screenshot;
+  vopt.title = "viqu view: " + scenario.name;
   viewer::RunViewer view(vopt);  // opens the window first: without a display nothing is written
   return runner::RunScenario(scenario, options, &view);
 #else

@@ -5,14 +5,15 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 
 # libqhull-dev: Debian's MuJoCo CMake config lists /usr/include/libqhull_r among its include dirs.
-# libglfw3-dev: the optional viewer (viqu view); xvfb: its test opens the window on a virtual display.
+# libglfw3-dev: the optional viewer (viqu view); xvfb, xdotool: its tests open the window on a
+# virtual display and press its keys.
 packages=(
   build-essential cmake pkg-config ccache
   libmujoco-dev libqhull-dev libeigen3-dev libopencv-dev liburdfdom-dev libconsole-bridge-dev zlib1g-dev libceres-dev libyaml-cpp-dev
   libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
   googletest libgtest-dev libbenchmark-dev
   python3-matplotlib python3-numpy python3-yaml
-  libglfw3-dev xvfb
+  libglfw3-dev xvfb xdotool
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -27,8 +27,13 @@ TEST(Playback, PausedLetsFramesThroughOnlyByStep) {
   EXPECT_TRUE(p.TakeFrame());   // exactly one frame per step
   EXPECT_FALSE(p.TakeFrame());
   p.Step();
-  p.Step();                     // steps do not pile up: one pending step at most
+  p.Step();                     // steps asked for in a row add up: two frames
   EXPECT_TRUE(p.TakeFrame());
+  EXPECT_TRUE(p.TakeFrame());
+  EXPECT_FALSE(p.TakeFrame());
+  p.Step();
+  p.TogglePause();              // resuming drops steps not taken
+  p.TogglePause();
   EXPECT_FALSE(p.TakeFrame());
   p.TogglePause();
   EXPECT_TRUE(p.TakeFrame());

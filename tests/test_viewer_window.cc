@@ -3,6 +3,7 @@
 // holds the same estimate as `viqu run`. Without a display it fails cleanly before writing
 // anything. Skips (with the reason) where Xvfb is not installed.
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -62,6 +63,28 @@ class VirtualDisplay {
 };
 
 const std::string kScenario = std::string(VIQU_SOURCE_DIR) + "/scenarios/static_room.yaml";
+const char* const kXdotool = "/usr/bin/xdotool";
+
+// Runs a shell command; its standard output.
+std::string Shell(const std::string& cmd) {
+  std::string out;
+  std::FILE* p = ::popen(cmd.c_str(), "r");
+  if (p == nullptr) return out;
+  char buf[256];
+  for (size_t n; (n = std::fread(buf, 1, sizeof(buf), p)) > 0;) out.append(buf, n);
+  ::pclose(p);
+  return out;
+}
+
+// Polls `probe` every 100 ms for up to `timeout_s`; whether it came true.
+template <class F>
+bool WaitFor(F probe, double timeout_s) {
+  for (int i = 0; i < static_cast<int>(timeout_s * 10); ++i) {
+    if (probe()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return probe();
+}
 
 TEST(ViewerWindow, WithoutADisplayFailsBeforeWritingAnything) {
   ASSERT_TRUE(testing::ViquBuilt());
@@ -145,6 +168,55 @@ TEST(ViewerWindow, ShowsTheRunAndSavesAScreenshotUnderXvfb) {
   cv::meanStdDev(grey, mean, stddev);
   std::printf("viewer screenshot: scene panel grey mean %.1f, std %.1f\n", mean[0], stddev[0]);
   EXPECT_GT(stddev[0], 23);  // measured 46.6 (a blank panel: 0)
+}
+
+// Keys as a user presses them (xdotool through the X server): three steps of a paused run show
+// frames 1, 2 and 3; q closes the window, which ends the run there with the folder marked
+// incomplete and exit 0.
+TEST(ViewerWindow, KeysStepAPausedRunAndQuitEndsIt) {
+  ASSERT_TRUE(testing::ViquBuilt());
+  if (!fs::exists(kXvfb)) GTEST_SKIP() << kXvfb << " not found (Debian package xvfb): the window test needs a virtual display";
+  if (!fs::exists(kXdotool)) GTEST_SKIP() << kXdotool << " not found (Debian package xdotool): the key test needs it";
+  VirtualDisplay display;
+  ASSERT_FALSE(display.name().empty()) << "Xvfb did not report a display number";
+  ::setenv("DISPLAY", display.name().c_str(), 1);
+  const fs::path tmp = fs::temp_directory_path();
+  const fs::path out = tmp / "viqu_view_keys", shot = tmp / "viqu_view_keys.png", log = tmp / "viqu_view_keys.log";
+  fs::remove_all(out);
+  fs::remove(shot);
+  const pid_t pid = testing::SpawnViqu({"view", kScenario, "--set", "duration_s=3", "--paused", "--screenshot",
+                                        shot.string(), "--out", out.string()}, log.string());
+  std::string window;
+  const auto title = [&] { return Shell(std::string(kXdotool) + " getwindowname " + window + " 2>/dev/null"); };
+  const bool opened = WaitFor([&] {
+    window = Shell(std::string(kXdotool) + " search --name 'viqu view: static_room' 2>/dev/null");
+    window = window.substr(0, window.find('\n'));
+    return !window.empty() && title().find("t 0.000 s") != std::string::npos;  // frame 0 shown, paused
+  }, 120);
+  if (!opened) ::kill(pid, SIGTERM);
+  ASSERT_TRUE(opened) << ReadAll(log);
+  Shell(std::string(kXdotool) + " windowfocus --sync " + window + " key n n n");
+  const bool stepped = WaitFor([&] { return title().find("t 0.150 s") != std::string::npos; }, 120);
+  EXPECT_TRUE(stepped) << title();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_NE(title().find("t 0.150 s"), std::string::npos) << "paused: no frame after the three steps";
+  Shell(std::string(kXdotool) + " windowfocus --sync " + window + " key q");
+  int status = 0;
+  const bool exited = WaitFor([&] { return ::waitpid(pid, &status, WNOHANG) == pid; }, 60);
+  if (!exited) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  ASSERT_TRUE(exited) << "q did not close the viewer: " << ReadAll(log);
+  EXPECT_EQ(ExitCodeOf(status), 0) << ReadAll(log);
+  std::istringstream gt(ReadAll(out / "trajectory_gt.txt"));
+  int poses = 0;
+  for (std::string line; std::getline(gt, line);) poses += !line.empty() && line[0] != '#';
+  EXPECT_EQ(poses, 4);  // frames 0 to 3
+  EXPECT_FALSE(fs::exists(out / "run_complete.json"));
+  EXPECT_NE(ReadAll(out / "run_incomplete.json").find("viewer closed at simulated time 0.150 s"), std::string::npos)
+      << ReadAll(out / "run_incomplete.json");
+  EXPECT_TRUE(fs::exists(shot));
 }
 
 }  // namespace

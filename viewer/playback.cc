@@ -8,13 +8,13 @@ Playback::Playback(double speed, bool paused) : paused_(paused) { SetSpeed(speed
 
 void Playback::TogglePause() {
   paused_ = !paused_;
-  step_pending_ = false;
+  steps_pending_ = 0;
   Restart();
 }
 
 void Playback::Step() {
   paused_ = true;
-  step_pending_ = true;
+  ++steps_pending_;
   Restart();
 }
 
@@ -29,8 +29,8 @@ void Playback::SetSpeed(double speed) {
 
 bool Playback::TakeFrame() {
   if (!paused_) return true;
-  if (!step_pending_) return false;
-  step_pending_ = false;
+  if (steps_pending_ == 0) return false;
+  --steps_pending_;
   return true;
 }
 

@@ -17,7 +17,7 @@ class Playback {
   explicit Playback(double speed, bool paused = false);
 
   void TogglePause();
-  // Pauses and lets exactly one more frame through.
+  // Pauses and lets one more frame through; steps asked for before they are taken add up.
   void Step();
   // Doubles / halves the speed (within kMinSpeed..kMaxSpeed); from unpaced, Slower goes to kMaxSpeed.
   void Faster();
@@ -28,7 +28,7 @@ class Playback {
   double speed() const { return speed_; }
 
   // Whether the next frame may be shown now: not paused, or a step is pending (which this
-  // consumes).
+  // takes).
   bool TakeFrame();
 
   // Wall time to wait (s, >= 0) before showing the frame of simulated time `t_s` when the wall
@@ -41,7 +41,7 @@ class Playback {
 
   double speed_;
   bool paused_;
-  bool step_pending_ = false;
+  int steps_pending_ = 0;
   bool anchored_ = false;
   double anchor_t_s_ = 0, anchor_wall_s_ = 0;
 };

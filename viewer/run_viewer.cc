@@ -67,7 +67,7 @@ struct ViewerScene {
 
 RunViewer::RunViewer(const ViewerOptions& opt)
     : opt_(opt),
-      window_(std::make_unique<ViewerWindow>(opt.width, opt.height, "viqu view")),
+      window_(std::make_unique<ViewerWindow>(opt.width, opt.height, opt.title)),
       playback_(opt.speed, opt.start_paused) {}
 
 RunViewer::~RunViewer() {
@@ -156,6 +156,9 @@ bool RunViewer::OnFrame(const runner::ObservedFrame& f) {
     window_->PollEvents(std::min(wait, kPollS));
   }
   Draw(f, "");
+  char title[64];
+  std::snprintf(title, sizeof(title), " - t %.3f s", f.t_s);
+  window_->SetTitle(opt_.title + title);
   // Paused: hold this frame (the camera still moves) until resumed or stepped.
   while (!playback_.TakeFrame()) {
     window_->PollEvents(kPollS);
@@ -172,6 +175,7 @@ void RunViewer::OnRunEnd(const runner::ObservedFrame& last) {
   const mjModel* m = last.world->model();
   const char* state = window_->CloseRequested() ? "run ended (window closed)" : "run finished";
   Draw(last, state);
+  window_->SetTitle(opt_.title + " - " + state);
   if (!opt_.exit_at_end) {
     while (!window_->CloseRequested()) {
       window_->PollEvents(kPollS * 3);

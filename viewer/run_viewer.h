@@ -25,6 +25,7 @@ struct ViewerOptions {
   bool start_paused = false;
   bool exit_at_end = false;  // close when the run ends (else the window stays until closed)
   std::string screenshot_path;  // PNG of the window's last picture, written when the viewer ends
+  std::string title = "viqu view";  // window title; the simulated time of the frame shown follows it
 };
 
 class ViewerWindow;

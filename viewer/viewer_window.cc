@@ -126,6 +126,8 @@ void ViewerWindow::FramebufferSize(int* width, int* height) const {
 
 void ViewerWindow::SwapBuffers() { glfwSwapBuffers(impl_->window); }
 
+void ViewerWindow::SetTitle(const std::string& title) { glfwSetWindowTitle(impl_->window, title.c_str()); }
+
 cv::Mat ViewerWindow::ReadBackBuffer() const {
   int w = 0, h = 0;
   FramebufferSize(&w, &h);

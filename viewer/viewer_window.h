@@ -37,6 +37,7 @@ class ViewerWindow {
   void RequestClose();
   void FramebufferSize(int* width, int* height) const;
   void SwapBuffers();
+  void SetTitle(const std::string& title);
   // The back buffer (drawn, not yet swapped) as an 8-bit BGR image, top row first.
   cv::Mat ReadBackBuffer() const;
 
