@@ -47,6 +47,9 @@ struct ViewerScene {
     mjr_defaultContext(&con);
     mjv_makeScene(m, &scn, m->ngeom + kExtraGeoms);
     mjr_makeContext(m, &con, mjFONTSCALE_100);
+    // Shadows and reflections each cost a scene pass in a software renderer and show little here.
+    scn.flags[mjRND_SHADOW] = 0;
+    scn.flags[mjRND_REFLECTION] = 0;
     cam.type = mjCAMERA_FREE;
     cam.distance = kCameraDistanceM;
     cam.elevation = kCameraElevationDeg;
@@ -140,10 +143,16 @@ bool RunViewer::OnFrame(const runner::ObservedFrame& f) {
     std::snprintf(buf, sizeof(buf), "%.1f mm", 1e3 * (f.track->T_w_c.translation() - f.ground_truth->back().p_w_x).norm());
     error_text_ = buf;
   }
+  // The speed achieved between two frames shown without a pause between them.
   const double now = NowS();
-  if (rtf_t_s_ >= 0 && now > rtf_wall_s_) last_rtf_ = (f.t_s - rtf_t_s_) / (now - rtf_wall_s_);
-  rtf_t_s_ = f.t_s;
-  rtf_wall_s_ = now;
+  if (playback_.paused()) {
+    rtf_t_s_ = -1;
+    last_rtf_ = 0;
+  } else {
+    if (rtf_t_s_ >= 0 && now > rtf_wall_s_) last_rtf_ = (f.t_s - rtf_t_s_) / (now - rtf_wall_s_);
+    rtf_t_s_ = f.t_s;
+    rtf_wall_s_ = now;
+  }
 
   // Wait for the frame's turn at the chosen speed, answering the window meanwhile.
   for (;;) {
@@ -183,9 +192,15 @@ void RunViewer::OnRunEnd(const runner::ObservedFrame& last) {
     }
   }
   SaveScreenshot(last, state);
+  std::vector<double> ms = draw_ms_;
+  if (!ms.empty()) {
+    std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
+    std::printf("viewer: %d pictures drawn, %.1f ms median each\n", draws_, ms[ms.size() / 2]);
+  }
 }
 
 void RunViewer::Draw(const runner::ObservedFrame& f, const std::string& state, cv::Mat* capture) {
+  const double t0 = NowS();
   window_->MakeCurrent();
   int fb_w = 0, fb_h = 0;
   window_->FramebufferSize(&fb_w, &fb_h);
@@ -256,14 +271,17 @@ void RunViewer::Draw(const runner::ObservedFrame& f, const std::string& state, c
   }
   char left[512], right[512];
   std::snprintf(left, sizeof(left), "time\nspeed\nachieved\ntracking\nerror\nmap\n%s", state.empty() ? "" : "state");
-  std::snprintf(right, sizeof(right), "%.2f s of %.1f s\n%s%s\n%.2fx real time\n%s\n%s\n%d points, %d keyframes\n%s",
-                f.t_s, f.duration_s, speed, playback_.paused() ? " (paused)" : "", last_rtf_, track_text_.c_str(),
+  char achieved[32] = "-";
+  if (last_rtf_ > 0) std::snprintf(achieved, sizeof(achieved), "%.2fx real time", last_rtf_);
+  std::snprintf(right, sizeof(right), "%.2f s of %.1f s\n%s%s\n%s\n%s\n%s\n%d points, %d keyframes\n%s",
+                f.t_s, f.duration_s, speed, playback_.paused() ? " (paused)" : "", achieved, track_text_.c_str(),
                 error_text_.empty() ? "-" : error_text_.c_str(), map_points, keyframes, state.c_str());
   const mjrRect status_rect{layout.status.left, layout.status.bottom, layout.status.width, layout.status.height};
   mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, status_rect, left, right, &con);
   if (capture) *capture = window_->ReadBackBuffer();
   window_->SwapBuffers();
   ++draws_;
+  draw_ms_.push_back(1e3 * (NowS() - t0));
 }
 
 void RunViewer::SaveScreenshot(const runner::ObservedFrame& last, const std::string& state) {

@@ -8,6 +8,7 @@
 // vertical), right drag pans, the wheel zooms.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <mujoco/mujoco.h>
 #include <opencv2/core/mat.hpp>
@@ -63,6 +64,7 @@ class RunViewer : public runner::RunObserver {
   double last_rtf_ = 0;  // simulated time over wall time across the last frames
   double rtf_t_s_ = -1, rtf_wall_s_ = 0;
   int draws_ = 0;
+  std::vector<double> draw_ms_;  // wall time of each picture (ms)
 };
 
 }  // namespace viqu::viewer
