@@ -28,8 +28,8 @@ int RunViewCommand(const ViewArgs& args, const std::string& command_line) {
   (void)args;
   (void)command_line;
   std::fprintf(stderr,
-               "viqu: this viqu was built without the viewer: GLFW was not found when it was configured "
-               "(install libglfw3-dev, then run scripts/setup.sh again)\n");
+               "viqu: this viqu was built without the viewer (GLFW was not found when it was configured, or "
+               "-DVIQU_VIEWER=OFF): install libglfw3-dev, then run scripts/setup.sh again\n");
   return 2;
 #endif
 }
