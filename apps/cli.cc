@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <algorithm>
 #include <thread>
 #include <utility>
@@ -73,6 +74,14 @@ const char* const kViewUsage =
     "    --paused         start paused (space resumes, n steps one frame)\n"
     "    --exit-at-end    close the window when the run ends (default: it stays until closed)\n"
     "    --screenshot F   write the window's last picture to F (PNG) when the viewer ends\n";
+
+// The whole of `text` as a finite number; nothing when it is not one.
+std::optional<double> FiniteNumber(const std::string& text) {
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
 
 // Walks over one subcommand's arguments: options (with values) and positionals.
 class ArgCursor {
@@ -243,12 +252,9 @@ EvalArgs ParseEval(ArgCursor* c) {
       delta_frames_given = true;
     } else if (arg == "--delta-m") {
       const std::string v = c->TakeValue(arg);
-      char* end = nullptr;
-      const double x = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(x > 0) || !std::isfinite(x)) {
-        throw UsageError("eval: --delta-m expects a positive number of metres, got '" + v + "'");
-      }
-      a.delta_m = x;
+      const std::optional<double> x = FiniteNumber(v);
+      if (!x || !(*x > 0)) throw UsageError("eval: --delta-m expects a positive number of metres, got '" + v + "'");
+      a.delta_m = *x;
     } else {
       UnknownOption("eval", arg);
     }
@@ -340,12 +346,11 @@ ViewArgs ParseView(ArgCursor* c) {
       a.options.slam = false;
     } else if (arg == "--speed") {
       const std::string v = c->TakeValue(arg);
-      char* end = nullptr;
-      const double x = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(x >= 0) || !std::isfinite(x)) {
+      const std::optional<double> x = FiniteNumber(v);
+      if (!x || !(*x >= 0)) {
         throw UsageError("view: --speed expects a number >= 0 (simulated seconds per second; 0: as fast as it runs), got '" + v + "'");
       }
-      a.speed = x;
+      a.speed = *x;
     } else if (arg == "--paused") {
       c->NoValue(arg);
       a.paused = true;

@@ -46,6 +46,9 @@ class LoRun {
 
   LoSummary Finish(const eval::Trajectory& gt_cam, double path_length_m, JsonWriter* json);
 
+  // The leg-odometry estimate of the left camera so far (one pose per camera frame).
+  const eval::Trajectory& estimate() const { return est_; }
+
  private:
   lo::LegOdometry lo_;
   Eigen::Isometry3d T_body_cam_;

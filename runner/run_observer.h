@@ -27,6 +27,7 @@ struct ObservedFrame {
   const slam::TrackResult* track = nullptr;  // null without SLAM
   const SlamRun* slam = nullptr;             // null without SLAM: estimate and map
   const eval::Trajectory* ground_truth = nullptr;  // left camera in the world, every frame so far
+  const eval::Trajectory* leg_odometry = nullptr;  // leg odometry + IMU alone (slam.mode full), else null
 };
 
 class RunObserver {

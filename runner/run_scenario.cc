@@ -328,7 +328,8 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
         }
         if (steer_by_estimate) steer_poses.Put(index, fused_lo ? fused_lo->T_w_body() : track->T_w_c * T_cam_body);
         if (observer) {  // inline: this is the simulation thread, and the world is at t_ns
-          observed = {index, t_ns * 1e-9, s.duration_s, &world, &frame, track ? &*track : nullptr, slam.get(), &gt_cam};
+          observed = {index, t_ns * 1e-9, s.duration_s, &world, &frame, track ? &*track : nullptr, slam.get(), &gt_cam,
+                      lo ? &lo->estimate() : nullptr};
           observer_stop = !observer->OnFrame(observed);
           observed.frame = nullptr;
           observed.track = nullptr;

@@ -10,6 +10,7 @@
 
 #include "common/run_folder.h"
 #include "runner/run_scenario.h"
+#include "short_scenario.h"
 #include "runner/slam_run.h"
 #include "sim/world.h"
 
@@ -25,24 +26,7 @@ std::string ReadAll(const fs::path& p) {
   return ss.str();
 }
 
-Scenario ShortScenario() {
-  Scenario s;
-  s.name = "observer";
-  s.seed = 11;
-  s.duration_s = 1.0;
-  s.world = std::string(VIQU_SOURCE_DIR) + "/models/worlds/room.xml";
-  s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
-  s.robot.command.velocity = {{0.0, 0.12, 0.2}};
-  s.sensors.camera.width = 320;
-  s.sensors.camera.height = 240;
-  ObstacleConfig person;
-  person.name = "walker";
-  person.category = "person";
-  person.path = {{1.0, -0.8}, {1.0, 0.8}};
-  person.speed_mps = 0.8;
-  s.obstacles.push_back(person);
-  return s;
-}
+Scenario ShortScenario() { return testing::ShortWalkerScenario("observer", 11); }
 
 // Checks each frame against the simulation it comes with; can ask to stop after some frames.
 class CheckingObserver : public runner::RunObserver {
@@ -65,6 +49,9 @@ class CheckingObserver : public runner::RunObserver {
     if (f.track && f.slam) {
       EXPECT_EQ(f.track->t_ns, f.frame->t_ns);
       EXPECT_EQ(f.slam->estimate().size(), static_cast<size_t>(frames_));
+      // slam.mode full (the default): the leg-odometry path comes with it, a pose per frame.
+      EXPECT_NE(f.leg_odometry, nullptr);
+      if (f.leg_odometry) EXPECT_EQ(f.leg_odometry->size(), static_cast<size_t>(frames_));
       max_error_m_ = std::max(max_error_m_, (f.track->T_w_c.translation() - p_cam).norm());
       map_points_ = f.slam->system().MapPoints().size();
     }

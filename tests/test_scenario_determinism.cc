@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "runner/run_scenario.h"
+#include "short_scenario.h"
 
 namespace viqu {
 namespace {
@@ -21,24 +22,7 @@ std::string ReadAll(const fs::path& p) {
   return ss.str();
 }
 
-Scenario ShortScenario(uint64_t seed) {
-  Scenario s;
-  s.name = "determinism";
-  s.seed = seed;
-  s.duration_s = 1.0;
-  s.world = std::string(VIQU_SOURCE_DIR) + "/models/worlds/room.xml";
-  s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
-  s.robot.command.velocity = {{0.0, 0.12, 0.2}};
-  s.sensors.camera.width = 320;
-  s.sensors.camera.height = 240;
-  ObstacleConfig person;
-  person.name = "walker";
-  person.category = "person";
-  person.path = {{1.0, -0.8}, {1.0, 0.8}};
-  person.speed_mps = 0.8;
-  s.obstacles.push_back(person);
-  return s;
-}
+Scenario ShortScenario(uint64_t seed) { return testing::ShortWalkerScenario("determinism", seed); }
 
 fs::path RunInto(const Scenario& s, const std::string& tag, bool slam = false, bool sequential = false) {
   const fs::path dir = fs::temp_directory_path() / ("viqu_determinism_" + tag);

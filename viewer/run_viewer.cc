@@ -34,6 +34,7 @@ constexpr double kCameraAzimuthDeg = 200;
 // Colours of the paths (RGBA).
 constexpr float kTruthRgba[4] = {0.1f, 0.75f, 0.1f, 1};
 constexpr float kEstimateRgba[4] = {1.0f, 0.5f, 0.0f, 1};
+constexpr float kLegOdometryRgba[4] = {0.7f, 0.2f, 0.9f, 1};
 
 }  // namespace
 
@@ -220,6 +221,12 @@ void RunViewer::Draw(const runner::ObservedFrame& f, const std::string& state, c
     for (const StampedPose& p : *f.ground_truth) truth.points.push_back(p.p_w_x);
     std::copy(kTruthRgba, kTruthRgba + 4, truth.rgba);
     drawing.paths.push_back(std::move(truth));
+  }
+  if (f.leg_odometry) {
+    MapDrawing::Path lo;
+    for (const StampedPose& p : *f.leg_odometry) lo.points.push_back(p.p_w_x);
+    std::copy(kLegOdometryRgba, kLegOdometryRgba + 4, lo.rgba);
+    drawing.paths.push_back(std::move(lo));
   }
   int map_points = 0, keyframes = 0;
   if (f.slam) {

@@ -1,6 +1,6 @@
 #pragma once
 // `viqu view`: a window on a running scenario. The left side shows the world from a free camera
-// that follows the robot, with the ground-truth (green) and SLAM (orange) camera paths and the
+// that follows the robot, with the ground-truth (green), SLAM (orange) and leg-odometry (purple, mode full) camera paths and the
 // map points (blue; red when created on a segmented object); the right side shows the left
 // camera image with SLAM's overlays (runner/overlay_video.h) and a status panel. Keys: space
 // pause, n or right arrow one frame, + and - speed, 1 real time, 0 as fast as it goes, f follow
