@@ -51,7 +51,9 @@ class CheckingObserver : public runner::RunObserver {
       EXPECT_EQ(f.slam->estimate().size(), static_cast<size_t>(frames_));
       // slam.mode full (the default): the leg-odometry path comes with it, a pose per frame.
       EXPECT_NE(f.leg_odometry, nullptr);
-      if (f.leg_odometry) EXPECT_EQ(f.leg_odometry->size(), static_cast<size_t>(frames_));
+      if (f.leg_odometry) {
+        EXPECT_EQ(f.leg_odometry->size(), static_cast<size_t>(frames_));
+      }
       max_error_m_ = std::max(max_error_m_, (f.track->T_w_c.translation() - p_cam).norm());
       map_points_ = f.slam->system().MapPoints().size();
     }
