@@ -24,7 +24,7 @@ struct MapDrawing {
 // (a path keeps every k-th point and its last; the newest map points are kept).
 struct MapStyle {
   int max_path_segments = 400;      // per path
-  int max_map_points = 4000;
+  int max_map_points = 1500;       // the newest (each box is its own draw call: about 10 us in llvmpipe)
   double point_half_size_m = 0.006;  // half edge of a map point's box (m)
   double line_width_px = 3;          // path line width (px)
   float point_rgba[4] = {0.15f, 0.35f, 1.0f, 1};     // map point on the static scene (blue)
