@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/errors.h"
+#include "common/yaml_strict.h"
 #include "scenario/scenario_loader.h"
 
 namespace viqu {
@@ -484,6 +485,30 @@ TEST(ShippedScenarios, AllLoadAndRoundTrip) {
   }
   fs::remove_all(tmpl);
   std::printf("loaded %zu shipped scenarios\n", count);
+}
+
+// The YAML reader takes a file of up to 16 MiB whole (read in chunks) and refuses a larger one.
+TEST(YamlFileText, ReadsWholeFilesUpToTheLimitAndRefusesLarger) {
+  const fs::path dir = fs::temp_directory_path() / "viqu_yaml_text";
+  fs::create_directories(dir);
+  // Crosses the 64 KiB read chunks: 2 chunks and 17 bytes, every byte checked.
+  std::string medium;
+  for (size_t i = 0; i < 2 * 65536 + 17; ++i) medium.push_back(static_cast<char>('a' + i % 26));
+  std::ofstream(dir / "medium.yaml", std::ios::binary) << medium;
+  EXPECT_EQ(ReadYamlFileText((dir / "medium.yaml").string()), medium);
+  std::ofstream(dir / "empty.yaml", std::ios::binary) << "";
+  EXPECT_EQ(ReadYamlFileText((dir / "empty.yaml").string()), "");
+  const size_t limit = size_t{16} << 20;
+  std::ofstream(dir / "at_limit.yaml", std::ios::binary) << std::string(limit, '#');
+  EXPECT_EQ(ReadYamlFileText((dir / "at_limit.yaml").string()).size(), limit);
+  std::ofstream(dir / "over.yaml", std::ios::binary) << std::string(limit + 1, '#');
+  try {
+    ReadYamlFileText((dir / "over.yaml").string());
+    ADD_FAILURE() << "a file over 16 MiB was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("over.yaml: larger than 16 MiB"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
