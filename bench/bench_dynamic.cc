@@ -183,13 +183,16 @@ Sequence MakeSequence(PersonLook look_change) {
   std::vector<Eigen::Vector3d> box;
   std::vector<Descriptor> box_d;
   for (int i = 0; i < kPerObject; ++i) {
-    box.emplace_back(-0.9 + 0.5 * (u01(rng) - 0.5), 0.4 * (u01(rng) - 0.5), 1.5 + 0.02 * u01(rng));
+    // Draws z, y, x, one per declarator: argument evaluation order is up to the compiler.
+    const double z = u01(rng), y = u01(rng), x = u01(rng);
+    box.emplace_back(-0.9 + 0.5 * (x - 0.5), 0.4 * (y - 0.5), 1.5 + 0.02 * z);
     box_d.push_back(RandomDescriptor(rng));
   }
   // The person: a 0.4 x 0.65 m front 1 m ahead (legs and body up to 0.65 m above the camera).
   std::vector<Eigen::Vector3d> person;
   for (int i = 0; i < kPerObject; ++i) {
-    person.emplace_back(0.4 * (u01(rng) - 0.5), -0.65 * u01(rng) + 0.07, 1.0 + 0.05 * u01(rng));
+    const double z = u01(rng), y = u01(rng), x = u01(rng);
+    person.emplace_back(0.4 * (x - 0.5), -0.65 * y + 0.07, 1.0 + 0.05 * z);
   }
   // Its descriptors: four looks, each held for 10 frames (0.5 s); with kLegsChange the first
   // third (the body) keeps the first look's.

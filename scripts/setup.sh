@@ -6,7 +6,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 
 # libqhull-dev: Debian's MuJoCo CMake config lists /usr/include/libqhull_r among its include dirs.
 # libglfw3-dev: the optional viewer (viqu view); xvfb, xdotool: its tests open the window on a
-# virtual display and press its keys.
+# virtual display and press its keys. clang, libclang-rt-14-dev: the libFuzzer targets (CI's sanitizer
+# stage, scripts/sanitize.sh ci).
 packages=(
   build-essential cmake pkg-config ccache
   libmujoco-dev libqhull-dev libeigen3-dev libopencv-dev liburdfdom-dev libconsole-bridge-dev zlib1g-dev libceres-dev libyaml-cpp-dev
@@ -14,6 +15,7 @@ packages=(
   googletest libgtest-dev libbenchmark-dev
   python3-matplotlib python3-numpy python3-yaml
   libglfw3-dev xvfb xdotool
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -7,6 +7,7 @@
 #include "common/errors.h"
 #include "kinematics/leg_kinematics.h"
 #include "sim/mujoco_handles.h"
+#include "random_vector.h"
 
 namespace viqu {
 namespace {
@@ -37,7 +38,9 @@ TEST_F(KinematicsTest, UrdfForwardKinematicsMatchesMujocoFootSites) {
     d->qpos[0] = u(rng);
     d->qpos[1] = u(rng);
     d->qpos[2] = 0.5 + u(rng) * 0.2;
-    Eigen::Quaterniond q(Eigen::AngleAxisd(u(rng) * M_PI, Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()));
+    const Eigen::Vector3d axis = testing::RandomVector(u, rng);  // drawn before the angle (random_vector.h)
+    const double angle = u(rng) * M_PI;
+    Eigen::Quaterniond q(Eigen::AngleAxisd(angle, axis.normalized()));
     d->qpos[3] = q.w(); d->qpos[4] = q.x(); d->qpos[5] = q.y(); d->qpos[6] = q.z();
     std::array<double, kNumJoints> angles{};
     for (int leg = 0; leg < kNumLegs; ++leg) {

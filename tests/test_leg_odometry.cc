@@ -11,6 +11,7 @@
 #include "slam/lo/attitude_filter.h"
 #include "slam/lo/leg_imu_kf.h"
 #include "slam/lo/leg_odometry.h"
+#include "random_vector.h"
 
 namespace viqu {
 namespace {
@@ -90,11 +91,11 @@ TEST(LegImuKf, AStationaryRobotStaysPutUnderNoise) {
   double worst = 0;
   Eigen::Vector3d v_sum = Eigen::Vector3d::Zero();
   for (int k = 0; k < 4000; ++k) {
-    const Eigen::Vector3d a = Eigen::Vector3d(0.02, 0, 0) + 0.02 * Eigen::Vector3d(n(rng), n(rng), n(rng));
+    const Eigen::Vector3d a = Eigen::Vector3d(0.02, 0, 0) + 0.02 * testing::RandomVector(n, rng);
     kf.Predict(0.005, a, 0.3, stance);
     for (int i = 0; i < kNumLegs; ++i) {
-      kf.UpdateFootPosition(i, feet[i] - p + 0.003 * Eigen::Vector3d(n(rng), n(rng), n(rng)), 0.003);
-      kf.UpdateVelocity(0.05 * Eigen::Vector3d(n(rng), n(rng), n(rng)), 0.05);
+      kf.UpdateFootPosition(i, feet[i] - p + 0.003 * testing::RandomVector(n, rng), 0.003);
+      kf.UpdateVelocity(0.05 * testing::RandomVector(n, rng), 0.05);
     }
     worst = std::max(worst, (kf.position() - p).norm());
     if (k >= 3600) v_sum += kf.velocity();
@@ -196,8 +197,8 @@ class SyntheticStance : public ::testing::Test {
       if (slip_leg >= 0 && k > 0) feet[slip_leg] += foot_vel * 0.005;
       ImuSample imu;
       imu.t_ns = t;
-      imu.accel_i = Eigen::Vector3d(0, 0, 9.81) + 0.02 * Eigen::Vector3d(n(rng), n(rng), n(rng));
-      imu.gyro_i = 0.002 * Eigen::Vector3d(n(rng), n(rng), n(rng));
+      imu.accel_i = Eigen::Vector3d(0, 0, 9.81) + 0.02 * testing::RandomVector(n, rng);
+      imu.gyro_i = 0.002 * testing::RandomVector(n, rng);
       lo->AddImu(imu);
       lo->AddContact(ContactReading{t, {true, true, true, true}});
       JointState js;

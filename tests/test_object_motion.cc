@@ -26,7 +26,9 @@ class SyntheticObject {
     std::uniform_int_distribution<int> byte(0, 255);
     descriptors_.create(n, 32, CV_8U);
     for (int i = 0; i < n; ++i) {
-      points_.emplace_back(lateral(rng_), lateral(rng_), depth(rng_));
+      // Drawn z, y, x (random_vector.h): the order GCC gave these three arguments of one call.
+      const double z = depth(rng_), y = lateral(rng_), x = lateral(rng_);
+      points_.emplace_back(x, y, z);
       for (int b = 0; b < 32; ++b) descriptors_.at<uint8_t>(i, b) = static_cast<uint8_t>(byte(rng_));
     }
   }

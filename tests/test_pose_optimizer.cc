@@ -9,6 +9,7 @@
 
 #include "slam/core/map.h"
 #include "slam/core/pose_optimizer.h"
+#include "random_vector.h"
 
 namespace viqu::slam {
 namespace {
@@ -44,7 +45,8 @@ void MakeScene(int n, double noise_px, bool stereo, Scene* s) {
   f->level_sigma2 = {1.f};
   std::vector<Eigen::Vector3d> p_w;
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d p_c((U(rng) - 0.5) * 2.4, (U(rng) - 0.5) * 1.8, 1 + 3 * U(rng));
+    const Eigen::Vector3d r = testing::RandomVector(U, rng);
+    const Eigen::Vector3d p_c((r.x() - 0.5) * 2.4, (r.y() - 0.5) * 1.8, 1 + 3 * r.z());
     const Eigen::Vector2d uv = cam.Project(p_c);
     double du = N(rng), dv = N(rng), dr = N(rng);
     if (i % 10 == 0) {

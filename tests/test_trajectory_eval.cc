@@ -10,6 +10,7 @@
 
 #include "common/errors.h"
 #include "slam/eval/trajectory_error.h"
+#include "random_vector.h"
 
 namespace viqu::eval {
 namespace {
@@ -79,7 +80,7 @@ TEST(TrajectoryEval, MatchesEigenUmeyamaOnRandomNoise) {
   for (int i = 0; i < 200; ++i) {
     const Eigen::Vector3d p(0.02 * i, std::sin(0.05 * i), 0.2 * std::cos(0.03 * i));
     gt.push_back(Pose(0.05 * i, p));
-    est.push_back(Pose(0.05 * i, T * p + Eigen::Vector3d(n(rng), n(rng), n(rng))));
+    est.push_back(Pose(0.05 * i, T * p + testing::RandomVector(n, rng)));
   }
   for (bool scale : {false, true}) {
     const AteResult r = ComputeAte(est, gt, scale);
