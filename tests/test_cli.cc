@@ -14,6 +14,7 @@
 #include "apps/cli.h"
 #include "apps/usage_error.h"
 #include "tests/viqu_program.h"
+#include "read_all.h"
 
 namespace viqu::app {
 namespace {
@@ -213,10 +214,7 @@ TEST(CliProgram, ExitCodesAndMessages) {
       << view.output;
 }
 
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+using testing::ReadAll;
 
 // A TUM RGB-D sequence of three 64x48 frames of noise at 2 m, with its camera.yaml.
 void WriteTinyTum(const std::string& dir) {

@@ -13,18 +13,14 @@
 #include "short_scenario.h"
 #include "runner/slam_run.h"
 #include "sim/world.h"
+#include "read_all.h"
 
 namespace viqu {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadAll;
 
 Scenario ShortScenario() { return testing::ShortWalkerScenario("observer", 11); }
 

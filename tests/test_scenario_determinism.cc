@@ -9,18 +9,14 @@
 
 #include "runner/run_scenario.h"
 #include "short_scenario.h"
+#include "read_all.h"
 
 namespace viqu {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadAll;
 
 Scenario ShortScenario(uint64_t seed) { return testing::ShortWalkerScenario("determinism", seed); }
 

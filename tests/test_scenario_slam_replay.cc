@@ -40,6 +40,7 @@
 #include "common/errors.h"
 #include "scenario/scenario_loader.h"
 #include "slam/eval/trajectory.h"
+#include "read_all.h"
 
 namespace viqu {
 namespace {
@@ -83,10 +84,7 @@ fs::path Fresh(const std::string& tag) {
   return dir;
 }
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
+using testing::ReadAll;
 
 std::vector<std::string> Split(const std::string& line, char sep) {
   std::vector<std::string> out;

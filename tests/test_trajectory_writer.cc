@@ -8,18 +8,14 @@
 #include <Eigen/Geometry>
 
 #include "sim/trajectory_writer.h"
+#include "read_all.h"
 
 namespace viqu::sim {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadAll;
 
 fs::path TempDir() {
   std::string tmpl = (fs::temp_directory_path() / "viqu_traj_XXXXXX").string();

@@ -21,6 +21,7 @@
 
 #include "common/child_process.h"
 #include "viqu_program.h"
+#include "read_all.h"
 
 namespace viqu {
 namespace {
@@ -28,12 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::RunViqu;
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadAll;
 
 const char* const kXvfb = "/usr/bin/Xvfb";
 
