@@ -375,24 +375,17 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   WriteFileAtomic(out + "/metrics.json", json.ToString());
 
   const int exit_code = metrics.fell && !s.robot.allow_fall ? 1 : 0;
-  if (observer_stop && stop_signal == 0) {
+  if (stop_signal != 0 || observer_stop) {
+    // Ended early, by a stop signal or by the viewer: the outputs so far, marked incomplete.
     char reason[128];
-    std::snprintf(reason, sizeof(reason), "the viewer closed at simulated time %.3f s of %.3f s", metrics.sim_time_s,
-                  s.duration_s);
-    folder.Interrupted(reason);
-    std::fprintf(stderr, "viqu: run ended early: %s; %s holds the outputs so far, marked incomplete (%s)\n", reason,
-                 folder.final_path().c_str(), kRunIncompleteMarker);
-    observer->OnRunEnd(observed);
-    return 0;
-  }
-  if (stop_signal != 0) {
-    char reason[128];
-    std::snprintf(reason, sizeof(reason), "%s at simulated time %.3f s of %.3f s", SignalName(stop_signal),
-                  metrics.sim_time_s, s.duration_s);
+    std::snprintf(reason, sizeof(reason), "%s at simulated time %.3f s of %.3f s",
+                  stop_signal != 0 ? SignalName(stop_signal) : "the viewer closed", metrics.sim_time_s, s.duration_s);
     folder.Interrupted(reason);
     std::fprintf(stderr, "viqu: run stopped by %s; %s holds the outputs so far, marked incomplete (%s)\n", reason,
                  folder.final_path().c_str(), kRunIncompleteMarker);
-    return ExitCodeForSignal(stop_signal);
+    if (stop_signal != 0) return ExitCodeForSignal(stop_signal);
+    observer->OnRunEnd(observed);
+    return 0;
   }
   folder.Complete(exit_code);
   std::printf("viqu run %s: %.1f s simulated in %.1f s (real-time factor %.2fx), path %.2f m, %d frames, "

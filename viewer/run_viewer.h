@@ -41,9 +41,6 @@ class RunViewer : public runner::RunObserver {
   bool OnFrame(const runner::ObservedFrame& f) override;
   void OnRunEnd(const runner::ObservedFrame& last) override;
 
-  // Frames drawn so far (each camera frame once, plus redraws while paused or at the end).
-  int draws() const { return draws_; }
-
  private:
   // Applies queued input; true when the picture should change.
   bool HandleEvents(const mjModel* m);
@@ -63,7 +60,7 @@ class RunViewer : public runner::RunObserver {
   std::string track_text_, error_text_;
   double last_rtf_ = 0;  // simulated time over wall time across the last frames
   double rtf_t_s_ = -1, rtf_wall_s_ = 0;
-  int draws_ = 0;
+  int draws_ = 0;  // pictures drawn (each camera frame once, plus redraws while paused or at the end)
   std::vector<double> draw_ms_;  // wall time of each picture (ms)
 };
 
