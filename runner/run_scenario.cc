@@ -381,7 +381,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
     std::snprintf(reason, sizeof(reason), "%s at simulated time %.3f s of %.3f s",
                   stop_signal != 0 ? SignalName(stop_signal) : "the viewer closed", metrics.sim_time_s, s.duration_s);
     folder.Interrupted(reason);
-    std::fprintf(stderr, "viqu: run stopped by %s; %s holds the outputs so far, marked incomplete (%s)\n", reason,
+    std::fprintf(stderr, "viqu: run stopped (%s); %s holds the outputs so far, marked incomplete (%s)\n", reason,
                  folder.final_path().c_str(), kRunIncompleteMarker);
     if (stop_signal != 0) return ExitCodeForSignal(stop_signal);
     observer->OnRunEnd(observed);
