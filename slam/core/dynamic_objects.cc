@@ -86,12 +86,20 @@ ObjectSnapshot DynamicObjects::Snapshot(int64_t t_ns, const FrameFeatures& f, ui
   if (by_depth.size() > kMaxSnapshotPoints) by_depth.resize(kMaxSnapshotPoints);
   ObjectSnapshot s;
   s.t_ns = t_ns;
+  s.T_c_w = T_w_c.inverse();
   s.descriptors.create(static_cast<int>(by_depth.size()), f.descriptors.cols, f.descriptors.type());
-  const double sigma_d = settings_.adaptive.disparity_sigma_px;
+  const double sigma_d = settings_.adaptive.disparity_sigma_px, sigma_px = settings_.adaptive.pixel_sigma_px;
   for (size_t k = 0; k < by_depth.size(); ++k) {
     const auto [z, i] = by_depth[k];
-    s.p_w.push_back(T_w_c * f.Unproject(cam_, i));
-    s.sigma_m.push_back(static_cast<double>(z) * z * sigma_d / cam_.bf);
+    const Eigen::Vector3d p_c = f.Unproject(cam_, i);
+    s.p_w.push_back(T_w_c * p_c);
+    // Depth error moves a point along its ray (range / z times the depth error); the keypoint's
+    // position error moves it across, by range * angle.
+    const double range_over_z = p_c.norm() / static_cast<double>(z);
+    s.sigma_m.push_back(static_cast<double>(z) * z * sigma_d / cam_.bf * range_over_z);
+    const size_t level = static_cast<size_t>(std::max(0, f.keypoints[static_cast<size_t>(i)].octave));
+    const double scale = level < f.level_scale.size() ? f.level_scale[level] : 1.0;
+    s.sigma_lateral_m.push_back(p_c.norm() * sigma_px * scale / cam_.fx);
     f.descriptors.row(i).copyTo(s.descriptors.row(static_cast<int>(k)));
   }
   return s;
@@ -127,12 +135,13 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
   }
   if (method_ == DynamicMethod::kNone) return turned;
   const Eigen::Isometry3d T_w_c = T_c_w.inverse();
-  // A reference point that would now lie within kBorderPx of the image edge cannot have been
-  // detected again (ORB needs a 31 px patch, 37 px on the second level): only its look-alikes can
+  // A point that would lie within kBorderPx of the edge of the other snapshot's image (the
+  // current one for a reference point, the reference one for a current point) cannot have been
+  // detected there (ORB needs a 31 px patch, 37 px on the second level): only its look-alikes can
   // match it.
   constexpr double kBorderPx = 40;
-  const InViewIfStatic in_view = [this, &T_c_w](const Eigen::Vector3d& p_w) {
-    const Eigen::Vector3d p_c = T_c_w * p_w;
+  const InViewIfStatic in_view = [this](const Eigen::Isometry3d& T_cam_w, const Eigen::Vector3d& p_w) {
+    const Eigen::Vector3d p_c = T_cam_w * p_w;
     if (p_c.z() <= 0) return false;
     const Eigen::Vector2d uv = cam_.Project(p_c);
     return uv.x() >= kBorderPx && uv.y() >= kBorderPx && uv.x() <= cam_.width - 1 - kBorderPx &&

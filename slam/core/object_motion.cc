@@ -46,36 +46,71 @@ MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot&
   MotionMeasurement m;
   m.lag_s = (cur.t_ns - ref.t_ns) * 1e-9;
   if (ref.size() == 0 || cur.size() == 0) return m;
-  std::vector<bool> usable;
+  std::vector<bool> usable_ref, usable_cur;
   if (in_view) {
-    usable.resize(ref.size());
-    for (size_t j = 0; j < ref.size(); ++j) usable[j] = in_view(ref.p_w[j]);
+    usable_ref.resize(ref.size());
+    for (size_t j = 0; j < ref.size(); ++j) usable_ref[j] = in_view(cur.T_c_w, ref.p_w[j]);
+    usable_cur.resize(cur.size());
+    for (size_t i = 0; i < cur.size(); ++i) usable_cur[i] = in_view(ref.T_c_w, cur.p_w[i]);
   }
-  std::vector<double> dx, dy, dz, sigma;
+  const bool isotropic = cur.sigma_lateral_m.empty() || ref.sigma_lateral_m.empty();
+  std::vector<Eigen::Vector3d> d, ray;
+  std::vector<double> var_along, var_across;
+  const Eigen::Vector3d camera_w = cur.T_c_w.inverse().translation();
   for (int i = 0; i < cur.descriptors.rows; ++i) {
+    if (!usable_cur.empty() && !usable_cur[static_cast<size_t>(i)]) continue;
     int best_d, second_d;
-    const int j = BestMatch(cur.descriptors, i, ref.descriptors, usable, &best_d, &second_d);
+    const int j = BestMatch(cur.descriptors, i, ref.descriptors, usable_ref, &best_d, &second_d);
     if (j < 0 || best_d > s.max_hamming || best_d >= kMatchRatio * second_d) continue;
     int back_d, back_second;
-    if (BestMatch(ref.descriptors, j, cur.descriptors, {}, &back_d, &back_second) != i) continue;
-    const Eigen::Vector3d d = cur.p_w[static_cast<size_t>(i)] - ref.p_w[static_cast<size_t>(j)];
-    dx.push_back(d.x());
-    dy.push_back(d.y());
-    dz.push_back(d.z());
-    sigma.push_back(std::hypot(cur.sigma_m[static_cast<size_t>(i)], ref.sigma_m[static_cast<size_t>(j)]));
+    if (BestMatch(ref.descriptors, j, cur.descriptors, usable_cur, &back_d, &back_second) != i) continue;
+    const size_t ci = static_cast<size_t>(i), rj = static_cast<size_t>(j);
+    d.push_back(cur.p_w[ci] - ref.p_w[rj]);
+    // The ref point's ray differs from the current one by the robot's motion over the lag (a few
+    // degrees at the distances where depth exists): both errors are taken along the current ray.
+    ray.push_back((cur.p_w[ci] - camera_w).normalized());
+    var_along.push_back(cur.sigma_m[ci] * cur.sigma_m[ci] + ref.sigma_m[rj] * ref.sigma_m[rj]);
+    var_across.push_back(isotropic ? var_along.back()
+                                   : cur.sigma_lateral_m[ci] * cur.sigma_lateral_m[ci] +
+                                         ref.sigma_lateral_m[rj] * ref.sigma_lateral_m[rj]);
   }
-  m.matches = static_cast<int>(dx.size());
+  m.matches = static_cast<int>(d.size());
   if (m.matches < s.min_matches) return m;
   m.judged = true;
-  m.displacement_w = {Median(dx), Median(dy), Median(dz)};
-  m.displacement_m = m.displacement_w.norm();
-  m.std_error_m = kMedianEfficiency * Median(sigma) / std::sqrt(static_cast<double>(m.matches));
-  m.threshold_m = s.threshold_m + s.k_sigma * m.std_error_m;
-  m.moving = m.displacement_m > m.threshold_m;
+  // Axes: the object's mean viewing ray and two directions across it.
+  Eigen::Vector3d along = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& r : ray) along += r;
+  along = along.norm() > 0 ? along.normalized() : Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d helper = Eigen::Vector3d::Zero();
+  Eigen::Index smallest;
+  along.cwiseAbs().minCoeff(&smallest);
+  helper(smallest) = 1;
+  const Eigen::Vector3d across1 = along.cross(helper).normalized(), across2 = along.cross(across1);
+  const Eigen::Vector3d axes[3] = {along, across1, across2};
+  const double root_n = std::sqrt(static_cast<double>(m.matches));
+  Eigen::Vector3d median, excess, upper;
+  for (int k = 0; k < 3; ++k) {
+    std::vector<double> comp(d.size()), sigma(d.size());
+    for (size_t i = 0; i < d.size(); ++i) {
+      comp[i] = d[i].dot(axes[k]);
+      // A point's error lies along its own ray (depth) and across it (position): its share on
+      // this axis. Off the mean ray, part of the large depth error falls across.
+      const double c2 = std::min(1.0, ray[i].dot(axes[k]) * ray[i].dot(axes[k]));
+      sigma[i] = std::sqrt(var_along[i] * c2 + var_across[i] * (1 - c2));
+    }
+    median(k) = Median(comp);
+    m.std_error(k) = kMedianEfficiency * Median(sigma) / root_n;
+    excess(k) = std::max(0.0, std::abs(median(k)) - s.k_sigma * m.std_error(k));
+    upper(k) = std::abs(median(k)) + s.k_sigma * m.std_error(k);
+  }
+  m.displacement_w = median(0) * axes[0] + median(1) * axes[1] + median(2) * axes[2];
+  m.displacement_m = median.norm();
+  m.threshold_m = s.threshold_m + (m.displacement_m - excess.norm());
+  m.moving = excess.norm() > s.threshold_m;
   // Stillness needs a long look: a walking person's stance foot stands still between two frames
   // while the other swings, so a short lag can show motion but never rule it out. Half the lag
   // (not a setting: it only says "a long look", lag_s sets the scale).
-  m.still = !m.moving && m.displacement_m + s.k_sigma * m.std_error_m < s.still_max_m && m.lag_s >= 0.5 * s.lag_s;
+  m.still = !m.moving && upper.norm() < s.still_max_m && m.lag_s >= 0.5 * s.lag_s;
   return m;
 }
 

@@ -3,9 +3,12 @@
 // in the world? Each frame, the object's features with stereo depth are put in the world frame
 // (with a pose from features outside the movable objects when those carry much of the view) and
 // matched by descriptor with the object's features of about `lag_s` earlier. The component-wise
-// median of the matched points' world displacements is the object's motion; it is compared with
-// `threshold_m` plus `k_sigma` standard errors of that median, from stereo depth noise
-// (sigma_z = z^2 * disparity_sigma / bf per point). Unlike the norm of world positions, this sees
+// median of the matched points' world displacements, along the object's viewing ray and across
+// it, is the object's motion. Each component less `k_sigma` of its standard errors must exceed
+// `threshold_m` (as a vector). The noise is that of stereo: along the ray from the depth
+// (sigma_z = z^2 * disparity_sigma / bf per point), across it from the keypoint position
+// (z * pixel_sigma * level scale / f), tens of times smaller at a few metres, so that motion
+// across the view is judged much sooner than motion in depth. Unlike the norm of world positions, this sees
 // tangential motion; unlike mask depth, it does not change with the robot's own motion; and unlike
 // the mean of whatever points are visible, it compares the same points, so an object sliding out of
 // the image or half hidden does not look like one that moves.
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <opencv2/core/mat.hpp>
 
 #include "slam/settings/slam_settings.h"
@@ -24,8 +28,11 @@ namespace viqu::slam {
 // An object's features with depth in one frame.
 struct ObjectSnapshot {
   int64_t t_ns = 0;
+  Eigen::Isometry3d T_c_w = Eigen::Isometry3d::Identity();  // the camera's pose, world to camera
   std::vector<Eigen::Vector3d> p_w;  // positions in the world (map) frame (m)
-  std::vector<double> sigma_m;       // depth standard deviation of each (m)
+  std::vector<double> sigma_m;       // standard deviation of each along its viewing ray, from depth (m)
+  std::vector<double> sigma_lateral_m;  // standard deviation across the ray, from the keypoint position
+                                        // (m; empty: as sigma_m, an isotropic error)
   cv::Mat descriptors;               // CV_8U, one 32-byte row per point
   size_t size() const { return p_w.size(); }
 };
@@ -33,25 +40,31 @@ struct ObjectSnapshot {
 struct MotionMeasurement {
   int matches = 0;                   // features matched between the two snapshots
   double lag_s = 0;                  // time between them (s)
-  Eigen::Vector3d displacement_w = Eigen::Vector3d::Zero();  // median displacement (m)
+  Eigen::Vector3d displacement_w = Eigen::Vector3d::Zero();  // median displacement, along and across the
+                                                             // object's viewing ray, in the world frame (m)
   double displacement_m = 0;         // its norm (m)
-  double std_error_m = 0;            // standard error of the median (m)
-  double threshold_m = 0;            // threshold_m + k_sigma * std_error_m (m)
+  Eigen::Vector3d std_error = Eigen::Vector3d::Zero();  // standard errors of the three medians: along
+                                                        // the ray, then across it (m)
+  double threshold_m = 0;            // the displacement_m beyond which it is moving: threshold_m plus what
+                                     // k_sigma standard errors take off each component (m)
   bool judged = false;               // enough matches to judge
   bool moving = false;               // judged and displacement_m > threshold
-  bool still = false;                // judged, displacement_m + k_sigma * std_error_m < still_max_m, over at
+  bool still = false;                // judged, |displacement + k_sigma std errors| < still_max_m, over at
                                      // least half of lag_s: the measurement rules out motion (far, noisy
                                      // objects and short looks are neither moving nor still)
 };
 
-// Whether a world point (m) would be in the current image if it had not moved.
-using InViewIfStatic = std::function<bool(const Eigen::Vector3d& p_w)>;
+// Whether a world point (m) lies in the image, well inside its edges, of a camera at T_c_w.
+using InViewIfStatic = std::function<bool(const Eigen::Isometry3d& T_c_w, const Eigen::Vector3d& p_w)>;
 
 // Matches `cur` to `ref` (mutual best Hamming distance within max_hamming, best below 0.8 of the
-// second best) and tests the median displacement. Reference points that would be out of the
-// current view had they stood still are left out (`in_view` may be empty: all are used): an
-// object leaving the image at its edge otherwise matches its remaining part with a look-alike
-// part that has left (a person's two legs carry the same texture), a consistent false motion.
+// second best) and tests the median displacement. Points that could not have been seen in the
+// other snapshot had they stood still are left out (`in_view` may be empty: all are used): the
+// reference points out of the current view, and the current points out of the reference view.
+// An object leaving the image at its edge otherwise matches its remaining part with a look-alike
+// part that has left (a person's two legs carry the same texture), and one entering the image
+// matches the part that has just come in with the look-alike part seen before: a consistent
+// false motion either way.
 MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot& cur, const AdaptiveDynamicSettings& s,
                                 const InViewIfStatic& in_view = {});
 

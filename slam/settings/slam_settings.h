@@ -62,7 +62,9 @@ struct AdaptiveDynamicSettings {
   double lag_s = 1.0;                // features are compared with the object's features this long ago (s)
   double threshold_m = 0.02;         // displacement beyond noise that makes an object dynamic (m)
   double k_sigma = 3.0;              // plus this many standard errors of the displacement (count)
-  double disparity_sigma_px = 0.5;   // stereo disparity noise behind the standard error (px)
+  double disparity_sigma_px = 0.5;   // stereo disparity noise behind the standard error along the ray (px)
+  double pixel_sigma_px = 0.5;       // keypoint position noise behind the standard error across the ray
+                                     // (px at pyramid level 0, times the level's scale)
   double still_max_m = 0.15;         // judged still only when displacement + k_sigma std errors is below this (m)
   double hold_s = 1.0;               // a dynamic object stays dynamic this long after its last motion (s)
   int confirm_frames = 2;            // consecutive judgements of motion before an object turns dynamic (frames)
