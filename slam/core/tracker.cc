@@ -190,7 +190,17 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   ++frame_index_;
   last_t_ns_ = frame.t_ns;
 
-  const bool reinitialise = initialised_ && lost_ && lost_frames_in_row_ >= settings_.tracking.reinitialise_after_lost;
+  bool reinitialise = initialised_ && lost_ && lost_frames_in_row_ >= settings_.tracking.reinitialise_after_lost;
+  // However long the loss, a view of mapped ground ends it in the map: a new segment would carry
+  // the dead-reckoned pose's error from then on. Only a view that does not relocalise starts one.
+  bool relocalised_late = false;
+  if (reinitialise) {
+    relocalised_late = Relocalise();
+    if (relocalised_late) {
+      last_reloc_frame_ = frame_index_;
+      reinitialise = false;
+    }
+  }
   if (!initialised_ || reinitialise) {
     // A new map segment continues from the last estimate (dead reckoning through the outage).
     cur_.T_c_w = initialised_ ? (have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w) : Eigen::Isometry3d::Identity();
@@ -210,7 +220,9 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   }
 
   bool ok = false;
-  if (!lost_) {
+  if (relocalised_late) {
+    ok = true;  // the local map is tracked below, as after any relocalisation
+  } else if (!lost_) {
     AddTemporaryPointsToLastFrame();
     if (have_velocity_) ok = TrackWithMotionModel();
     if (!ok) ok = TrackReferenceKeyFrame();

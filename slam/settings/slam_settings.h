@@ -31,7 +31,7 @@ struct TrackingSettings {
   int init_min_points = 100;         // stereo points needed to start a map or a new segment (count)
   int keyframe_new_points = 100;     // a new keyframe makes map points of at least its this many nearest stereo features (count)
   int keyframe_min_inliers = 50;     // a frame tracked with fewer inliers never becomes a keyframe (count)
-  int reinitialise_after_lost = 20;  // lost frames in a row before a new map segment is started (frames)
+  int reinitialise_after_lost = 20;  // lost frames in a row after which a frame that does not relocalise starts a new segment (frames)
   double weak_inliers_factor = 3;    // fewer inliers than this times min_inliers: search again with windows 3x as wide (ratio)
   int relocalised_frames = 20;       // frames after a relocalisation that need relocalised_min_inliers and make no keyframe (frames)
   int relocalised_min_inliers = 50;  // inliers a frame needs within relocalised_frames after a relocalisation (count)
