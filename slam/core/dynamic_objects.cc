@@ -95,11 +95,11 @@ ObjectSnapshot DynamicObjects::Snapshot(int64_t t_ns, const FrameFeatures& f, ui
     s.p_w.push_back(T_w_c * p_c);
     // Depth error moves a point along its ray (range / z times the depth error); the keypoint's
     // position error moves it across, by range * angle.
-    const double range_over_z = p_c.norm() / static_cast<double>(z);
-    s.sigma_m.push_back(static_cast<double>(z) * z * sigma_d / cam_.bf * range_over_z);
+    const double range = p_c.norm();
+    s.sigma_m.push_back(static_cast<double>(z) * z * sigma_d / cam_.bf * (range / static_cast<double>(z)));
     const size_t level = static_cast<size_t>(std::max(0, f.keypoints[static_cast<size_t>(i)].octave));
     const double scale = level < f.level_scale.size() ? f.level_scale[level] : 1.0;
-    s.sigma_lateral_m.push_back(p_c.norm() * sigma_px * scale / cam_.fx);
+    s.sigma_lateral_m.push_back(range * sigma_px * scale / cam_.fx);
     f.descriptors.row(i).copyTo(s.descriptors.row(static_cast<int>(k)));
   }
   return s;

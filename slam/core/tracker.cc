@@ -190,17 +190,15 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   ++frame_index_;
   last_t_ns_ = frame.t_ns;
 
-  bool reinitialise = initialised_ && lost_ && lost_frames_in_row_ >= settings_.tracking.reinitialise_after_lost;
-  // However long the loss, a view of mapped ground ends it in the map: a new segment would carry
-  // the dead-reckoned pose's error from then on. Only a view that does not relocalise starts one.
-  bool relocalised_late = false;
-  if (reinitialise) {
-    relocalised_late = Relocalise();
-    if (relocalised_late) {
-      last_reloc_frame_ = frame_index_;
-      reinitialise = false;
-    }
+  // A lost tracker tries to relocalise first, however long the loss: a view of mapped ground ends
+  // it in the map, where a new segment would carry the dead-reckoned pose's error from then on.
+  bool relocalised = false;
+  if (initialised_ && lost_) {
+    relocalised = Relocalise();
+    if (relocalised) last_reloc_frame_ = frame_index_;
   }
+  const bool reinitialise = initialised_ && lost_ && !relocalised &&
+                            lost_frames_in_row_ >= settings_.tracking.reinitialise_after_lost;
   if (!initialised_ || reinitialise) {
     // A new map segment continues from the last estimate (dead reckoning through the outage).
     cur_.T_c_w = initialised_ ? (have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w) : Eigen::Isometry3d::Identity();
@@ -219,16 +217,11 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     return r;
   }
 
-  bool ok = false;
-  if (relocalised_late) {
-    ok = true;  // the local map is tracked below, as after any relocalisation
-  } else if (!lost_) {
+  bool ok = relocalised;  // a lost frame has had its one chance above
+  if (!lost_) {
     AddTemporaryPointsToLastFrame();
     if (have_velocity_) ok = TrackWithMotionModel();
     if (!ok) ok = TrackReferenceKeyFrame();
-  } else {
-    ok = Relocalise();
-    if (ok) last_reloc_frame_ = frame_index_;
   }
   int inliers = 0;
   if (ok) {
