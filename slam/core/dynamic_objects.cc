@@ -125,6 +125,10 @@ std::map<uint16_t, double> DynamicObjects::LabelledPointNorms(const cv::Mat& ins
   return out;
 }
 
+void DynamicObjects::RestartMeasurements() {
+  for (auto& [id, o] : objects_) o.motion.RestartMeasurements();
+}
+
 std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& f, const cv::Mat& instance_id,
                                              const Eigen::Isometry3d& T_c_w,
                                              const std::vector<Eigen::Vector3d>& map_points_w) {

@@ -65,6 +65,10 @@ class DynamicObjects {
   std::vector<uint16_t> Update(int64_t t_ns, const FrameFeatures& f, const cv::Mat& instance_id,
                                const Eigen::Isometry3d& T_c_w, const std::vector<Eigen::Vector3d>& map_points_w);
 
+  // The world frame has jumped (a relocalisation, a new map segment): the objects' motion
+  // measurements start again; their decisions stand.
+  void RestartMeasurements();
+
   // The reports of the current frame, in id order.
   const std::vector<ObjectReport>& reports() const { return reports_; }
 

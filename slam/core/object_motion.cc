@@ -103,6 +103,10 @@ MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot&
     excess(k) = std::max(0.0, std::abs(median(k)) - s.k_sigma * m.std_error(k));
     upper(k) = std::abs(median(k)) + s.k_sigma * m.std_error(k);
   }
+  if (m.lag_s > 0 && median.norm() - s.k_sigma * m.std_error.norm() > s.max_speed_mps * m.lag_s) {
+    m.judged = false;  // faster than any object followed here: mismatches
+    return m;
+  }
   m.displacement_w = median(0) * axes[0] + median(1) * axes[1] + median(2) * axes[2];
   m.displacement_m = median.norm();
   m.threshold_m = s.threshold_m + (m.displacement_m - excess.norm());
@@ -112,6 +116,11 @@ MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot&
   // (not a setting: it only says "a long look", lag_s sets the scale).
   m.still = !m.moving && upper.norm() < s.still_max_m && m.lag_s >= 0.5 * s.lag_s;
   return m;
+}
+
+void ObjectMotionTrack::RestartMeasurements() {
+  history_.clear();
+  consecutive_moving_ = 0;
 }
 
 bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view) {

@@ -58,7 +58,9 @@ struct MotionMeasurement {
 using InViewIfStatic = std::function<bool(const Eigen::Isometry3d& T_c_w, const Eigen::Vector3d& p_w)>;
 
 // Matches `cur` to `ref` (mutual best Hamming distance within max_hamming, best below 0.8 of the
-// second best) and tests the median displacement. Points that could not have been seen in the
+// second best) and tests the median displacement. A median displacement faster than
+// max_speed_mps beyond its errors is a mismatch (a frame whose mask held the background behind
+// the object, a jump in stereo depth), not motion: not judged. Points that could not have been seen in the
 // other snapshot had they stood still are left out (`in_view` may be empty: all are used): the
 // reference points out of the current view, and the current points out of the reference view.
 // An object leaving the image at its edge otherwise matches its remaining part with a look-alike
@@ -77,6 +79,10 @@ class ObjectMotionTrack {
   // still since it last moved.
   bool Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view = {});
   const MotionMeasurement& last() const { return last_; }
+  // Forgets the snapshots (not the decision, its hold or the time of the last motion): after the
+  // world frame has changed under them (a new map segment, a relocalisation), world positions
+  // before and after differ by the pose jump, which is no motion of the object.
+  void RestartMeasurements();
 
  private:
   std::deque<ObjectSnapshot> history_;  // oldest first, all within lag_s of the newest

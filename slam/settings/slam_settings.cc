@@ -138,6 +138,7 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   a.Number("k_sigma", &ad->k_sigma, NumberRange::Closed(0, 100));
   a.Number("disparity_sigma_px", &ad->disparity_sigma_px, NumberRange::Closed(0, 100));
   a.Number("pixel_sigma_px", &ad->pixel_sigma_px, NumberRange::Closed(0, 100));
+  a.Number("max_speed_mps", &ad->max_speed_mps, NumberRange::Positive());
   a.Number("still_max_m", &ad->still_max_m, NumberRange::Positive());
   a.Number("hold_s", &ad->hold_s, NumberRange::Closed(0, 600));
   a.Integer("confirm_frames", &ad->confirm_frames, NumberRange::Closed(1, 1000));
@@ -309,6 +310,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "k_sigma", a.k_sigma);
   EmitNumber(out, "disparity_sigma_px", a.disparity_sigma_px);
   EmitNumber(out, "pixel_sigma_px", a.pixel_sigma_px);
+  EmitNumber(out, "max_speed_mps", a.max_speed_mps);
   EmitNumber(out, "still_max_m", a.still_max_m);
   EmitNumber(out, "hold_s", a.hold_s);
   EmitInt(out, "confirm_frames", a.confirm_frames);

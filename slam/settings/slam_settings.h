@@ -65,6 +65,7 @@ struct AdaptiveDynamicSettings {
   double disparity_sigma_px = 0.5;   // stereo disparity noise behind the standard error along the ray (px)
   double pixel_sigma_px = 0.5;       // keypoint position noise behind the standard error across the ray
                                      // (px at pyramid level 0, times the level's scale)
+  double max_speed_mps = 3;          // a median displacement faster than this is a mismatch, no motion (m/s)
   double still_max_m = 0.2;          // judged still only when displacement + k_sigma std errors is below this (m)
   double hold_s = 1.0;               // a dynamic object stays dynamic this long after its last motion (s)
   int confirm_frames = 2;            // consecutive judgements of motion before an object turns dynamic (frames)
