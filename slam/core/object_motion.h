@@ -60,9 +60,10 @@ using InViewIfStatic = std::function<bool(const Eigen::Isometry3d& T_c_w, const 
 // Matches `cur` to `ref` (mutual best Hamming distance within max_hamming, best below 0.8 of the
 // second best) and tests the median displacement. A median displacement faster than
 // max_speed_mps beyond its errors is a mismatch (a frame whose mask held the background behind
-// the object, a jump in stereo depth), not motion: not judged. Points that could not have been seen in the
-// other snapshot had they stood still are left out (`in_view` may be empty: all are used): the
-// reference points out of the current view, and the current points out of the reference view.
+// the object, a jump in stereo depth), not motion: not judged. Points that could not have been
+// seen in the other snapshot had they stood still are left out (`in_view` may be empty: all are
+// used): the reference points out of the current view, and the current points out of the
+// reference view.
 // An object leaving the image at its edge otherwise matches its remaining part with a look-alike
 // part that has left (a person's two legs carry the same texture), and one entering the image
 // matches the part that has just come in with the look-alike part seen before: a consistent

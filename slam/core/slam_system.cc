@@ -122,7 +122,9 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
   // After tracking: judge the objects again with the frame's pose (in a world frame that has
   // jumped if the frame was relocalised or began a new segment).
   td = Clock::now();
-  if (r.status == TrackStatus::kRelocalised || r.status == TrackStatus::kInitialised) m.dynamic->RestartMeasurements();
+  if (r.status == TrackStatus::kRelocalised || r.status == TrackStatus::kInitialised) {
+    m.dynamic->RestartMeasurements();
+  }
   if (m.dynamic->method() != DynamicMethod::kNone && r.status != TrackStatus::kLost && !m.dynamic->reports().empty()) {
     Eigen::Isometry3d T_c_w = m.tracker.LastPose();
     if (m.dynamic->NeedsPose()) {
