@@ -16,6 +16,7 @@
 #include "sim/trajectory_writer.h"
 #include "kinematics/leg_kinematics.h"
 #include "slam/features/orb_extractor.h"
+#include "slam/fusion/gyro_motion_prior.h"
 #include "slam/fusion/visual_leg_fusion.h"
 #include "slam/io/open_dataset.h"
 #include "slam/io/proprioception_reader.h"
@@ -132,9 +133,17 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   std::unique_ptr<slam::VisualLegFusion> fusion;
   std::unique_ptr<ProprioceptionFeed> feed;
   if (settings.mode == "full" && format == io::DatasetFormat::kViqu) proprio = io::ReadViquProprioception(args.dataset_dir);
-  if (settings.mode == "full" && !proprio) {
+  // Mode full on a dataset with an IMU but no leg encoders (EuRoC): the gyro's rotation prior.
+  const io::InertialStream* imu = settings.mode == "full" && !proprio ? reader->inertial() : nullptr;
+  std::unique_ptr<slam::GyroMotionPrior> gyro;
+  if (imu) {
+    gyro = std::make_unique<slam::GyroMotionPrior>(lo::AttitudeOptionsOf(settings.lo), imu->T_imu_cam);
+    std::fprintf(stderr, "viqu: note: mode full with %s: the gyro gives the motion prior (no leg odometry)\n",
+                 imu->source.c_str());
+  } else if (settings.mode == "full" && !proprio) {
     std::fprintf(stderr, "viqu: note: no imu0/joints0/contact0/robot.urdf in the dataset: mode full runs on vision alone\n");
   }
+  size_t next_imu = 0;
   if (proprio) {
     kin = kin::LegKinematics::FromUrdfFile(proprio->urdf_path);
     fused_lo = std::make_unique<lo::LegOdometry>(settings.lo, *kin);
@@ -155,9 +164,13 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
       const StampedPose* p0 = NearestPose(gt, frame.t_ns);
       run = std::make_unique<runner::SlamRun>(settings, out, p0 ? ToIsometry(*p0) : Eigen::Isometry3d::Identity());
       if (fusion) run->SetFusion(fusion.get());
+      if (gyro) run->SetGyroPrior(gyro.get());
       first_t = frame.t_ns;
     }
     if (feed) feed->Until(frame.t_ns);
+    while (gyro && next_imu < imu->samples.size() && imu->samples[next_imu].t_ns <= frame.t_ns) {
+      gyro->AddImu(imu->samples[next_imu++]);
+    }
     const slam::TrackResult r = run->Track(frame);
     last_t = frame.t_ns;
     ++frames;

@@ -14,22 +14,33 @@ SlamRun::SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
       writer_(out_dir + "/trajectory_est.txt"),
       log_(std::make_unique<AtomicOutputFile>(out_dir + "/tracking.csv")),
       dynamic_(out_dir + "/dynamic.csv") {
-  log_->Write("t_s,status,features,stereo_points,inliers,keyframe,track_ms,features_dropped,dynamic_ms\n");
+  log_->Write("t_s,status,features,stereo_points,inliers,keyframe,track_ms,features_dropped,dynamic_ms,"
+              "motion_prior,prior_err_deg,prior_err_mm\n");
 }
 
 slam::TrackResult SlamRun::Track(const StereoFrame& frame, const std::vector<ObjectTruth>* truth) {
   if (fusion_) fusion_->BeforeTrack(&system_);
+  if (gyro_) gyro_->BeforeTrack(&system_, frame.t_ns);
   const slam::TrackResult r = system_.Track(frame);
   if (fusion_) fusion_->AfterTrack(r);
+  if (gyro_) gyro_->AfterTrack(r);
   dynamic_.Add(r.t_ns, r.objects, truth);
   const StampedPose p = ToStampedPose(r.t_ns, r.T_w_c);
   writer_.Add(p);
   est_.push_back(p);
   status_.push_back(r.status);
-  char line[160];
-  std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%d,%.2f,%d,%.2f\n", sim::FormatSeconds(r.t_ns).c_str(),
+  // The prediction's miss, blank when the frame was not tracked from a prediction.
+  char miss[64] = ",";
+  if (r.prior_err_deg >= 0) {
+    std::snprintf(miss, sizeof miss, "%.4f,%.3f", r.prior_err_deg, r.prior_err_mm);
+    prior_err_deg_.push_back(r.prior_err_deg);
+    prior_err_mm_.push_back(r.prior_err_mm);
+  }
+  if (r.external_prior) ++external_priors_;
+  char line[224];
+  std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%d,%.2f,%d,%.2f,%s,%s\n", sim::FormatSeconds(r.t_ns).c_str(),
                 slam::TrackStatusName(r.status), r.features, r.stereo_points, r.inliers, r.keyframe ? 1 : 0, r.track_ms,
-                r.features_dropped, r.dynamic_ms);
+                r.features_dropped, r.dynamic_ms, r.external_prior ? "external" : "velocity", miss);
   log_->Write(line);
   return r;
 }
@@ -62,12 +73,21 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   json->Set("tracking.keyframes_freed", st.keyframes_freed);
   json->Set("tracking.map_points_freed", st.map_points_freed);
   json->Set("tracking.map_points_held", st.map_points_held);
+  // How well the motion prior (leg odometry + IMU, the gyro, or the constant-velocity guess)
+  // predicted each tracked frame's pose.
+  json->Set("tracking.prior_frames_external", external_priors_);
+  json->Set("tracking.prior_err_deg_median", Median(prior_err_deg_));
+  json->Set("tracking.prior_err_deg_p95", Percentile(prior_err_deg_, 0.95));
+  json->Set("tracking.prior_err_mm_median", Median(prior_err_mm_));
+  json->Set("tracking.prior_err_mm_p95", Percentile(prior_err_mm_, 0.95));
   json->Set("slam.mode", system_.settings().mode);
   json->Set("slam.dynamic_method", system_.settings().dynamic.method);
   json->Set("slam.input", system_.settings().input);
   json->Set("slam.mapping_mode", system_.settings().mapping.mode);
   json->Set("slam.settings_file", system_.settings().source_file);
   json->Set("lo.fused", fusion_ != nullptr);
+  json->Set("imu.gyro_prior", gyro_ != nullptr);
+  if (gyro_) json->Set("imu.gyro_priors_given", gyro_->priors_given());
   if (fusion_) {
     json->Set("lo.fusion_corrections", fusion_->corrections());
     json->Set("lo.frames_carried", fusion_->frames_carried());

@@ -4,8 +4,10 @@
 #   scripts/sanitize.sh tsan   TSan build in build-tsan/, runs the realtime-mapping tests
 #   scripts/sanitize.sh ci     CI's stage (.ci/run): GCC ASan + UBSan in build-ci-asan/ on the core
 #                              tests (the estimator, its readers and the loaders: VIQU_CORE_TESTS
-#                              in tests/CMakeLists.txt); clang libFuzzer in build-ci-fuzz/, each
-#                              target for FUZZ_SECONDS (default 20) on its corpus; GCC TSan in
+#                              in tests/CMakeLists.txt; leaks checked), then on the other fast
+#                              tests (label unit: simulator, run loop, program); clang libFuzzer
+#                              in build-ci-fuzz/, each target for FUZZ_SECONDS (default 20) on
+#                              its corpus; GCC TSan in
 #                              build-ci-tsan/ on the realtime-mapping test of test_slam_system
 # Any report fails the run (halt_on_error). Extra arguments go to ctest (asan, tsan).
 set -euo pipefail
@@ -53,6 +55,21 @@ case "$kind" in
       (cd "$dir/tests" && "./$t" --gtest_brief=1) > "$dir/$t.log" 2>&1 || { cat "$dir/$t.log"; echo "$t: failed under ASan + UBSan" >&2; exit 1; }
       echo "  $t: $(grep -E '^\[  PASSED  \]' "$dir/$t.log")"
     done
+    # 1b. The other fast tests (label unit): the simulator, the run loop and the program, built
+    # the same way. Leaks are not checked here: MuJoCo's and Mesa's one-time allocations at exit
+    # would be reported as leaks of the process (the core tests above and the fuzzers check them).
+    start=$(date +%s)
+    mapfile -t other < "$dir/other_unit_tests.txt"
+    cmake --build "$dir" -j"$jobs" --target viqu "${other[@]}"
+    echo "viqu sanitize ci: ASan + UBSan build of the other fast tests $(( $(date +%s) - start )) s"
+    export ASAN_OPTIONS=halt_on_error=1:detect_leaks=0:abort_on_error=1
+    for t in "${other[@]}"; do
+      (cd "$dir/tests" && "./$t" --gtest_brief=1) > "$dir/$t.log" 2>&1 || { cat "$dir/$t.log"; echo "$t: failed under ASan + UBSan" >&2; exit 1; }
+      echo "  $t: $(grep -E '^\[  PASSED  \]' "$dir/$t.log")"
+    done
+    (cd "$dir" && ctest -R '^Report\.PythonTool$' --output-on-failure) > "$dir/report_tool.log" 2>&1 || {
+      cat "$dir/report_tool.log"; echo "Report.PythonTool: failed with the ASan + UBSan program" >&2; exit 1; }
+    echo "  Report.PythonTool: passed"
     # 2. clang, libFuzzer + ASan + UBSan: each target for FUZZ_SECONDS on its corpus (leaks on).
     start=$(date +%s)
     dir="$root/build-ci-fuzz"

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "common/errors.h"
+#include "slam/io/imu_csv.h"
 #include "slam/io/proprioception_reader.h"
 
 namespace viqu {
@@ -59,6 +60,25 @@ TEST_F(ProprioceptionReaderTest, AMalformedRowNamesFileAndLine) {
   EXPECT_THROW(io::ReadViquProprioception(dir_.string()), InputError);
   WriteStreams("0,0,0,0,0,0\n");  // a field short
   EXPECT_THROW(io::ReadViquProprioception(dir_.string()), InputError);
+}
+
+TEST_F(ProprioceptionReaderTest, ImuCsvReadsEurocRowsAndRefusesAnEmptyOne) {
+  // EuRoC's imu0/data.csv (what `viqu slam --format euroc` reads in mode full): gyro, then accel.
+  Write("imu0/data.csv", "#timestamp [ns],wx,wy,wz,ax,ay,az\n1403636579758555392,-0.099,0.142,0.025,8.13,-0.37,-2.84\n"
+                         "1403636579763555584,-0.097,0.137,0.038,8.18,-0.41,-2.87\r\n");
+  const std::string path = (dir_ / "mav0" / "imu0" / "data.csv").string();
+  const std::vector<ImuSample> s = io::ReadImuCsv(path);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[1].t_ns, 1403636579763555584);
+  EXPECT_EQ(s[0].gyro_i, Eigen::Vector3d(-0.099, 0.142, 0.025));
+  EXPECT_EQ(s[1].accel_i, Eigen::Vector3d(8.18, -0.41, -2.87));
+  Write("imu0/data.csv", "#timestamp [ns],wx,wy,wz,ax,ay,az\n");
+  try {
+    io::ReadImuCsv(path);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -48,6 +48,12 @@ struct TrackResult {
   double dynamic_ms = 0;         // of that, the dynamic-object stage (ms)
   double excluded_share = 0;     // share of inliers on movable objects (judged with a pose without them above
                                  // dynamic.adaptive.static_pose_min_share)
+  // How far the tracker's prediction of this frame's pose (the motion prior of SetMotionPrior, or
+  // the constant-velocity guess) was from the pose tracked: rotation (deg) and camera centre
+  // (mm). Negative when there was no prediction or the frame was not tracked from the last one.
+  double prior_err_deg = -1;
+  double prior_err_mm = -1;
+  bool external_prior = false;   // the prediction came from SetMotionPrior
   std::vector<ObjectReport> objects;  // movable objects in the frame's masks
   std::vector<FeatureMark> marks;     // every feature's fate; only with SetRecordFeatures(true)
 };

@@ -180,6 +180,8 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   }
   TrackResult r;
   r.t_ns = frame.t_ns;
+  r.external_prior = external_prior_;
+  external_prior_ = false;  // a motion prior holds for one Track()
 
   std::lock_guard<std::mutex> lock(map_->mutex);
   temporary_.clear();
@@ -218,6 +220,8 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   }
 
   bool ok = relocalised;  // a lost frame has had its one chance above
+  const bool predicted = !lost_ && have_velocity_;
+  const Eigen::Isometry3d predicted_T_c_w = velocity_ * last_.T_c_w;
   if (!lost_) {
     AddTemporaryPointsToLastFrame();
     if (have_velocity_) ok = TrackWithMotionModel();
@@ -235,6 +239,11 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   if (ok) {
     r.status = lost_ ? TrackStatus::kRelocalised : TrackStatus::kTracking;
     if (r.status == TrackStatus::kTracking) {
+      if (predicted) {
+        const Eigen::Isometry3d miss = cur_.T_c_w * predicted_T_c_w.inverse();
+        r.prior_err_deg = Eigen::AngleAxisd(miss.rotation()).angle() * 180.0 / M_PI;
+        r.prior_err_mm = 1e3 * (cur_.T_c_w.inverse().translation() - predicted_T_c_w.inverse().translation()).norm();
+      }
       velocity_ = cur_.T_c_w * last_.T_c_w.inverse();
       have_velocity_ = true;
     }

@@ -66,6 +66,7 @@ class Tracker {
   void SetMotionPrior(const Eigen::Isometry3d& T_cur_last) {
     velocity_ = T_cur_last;
     have_velocity_ = true;
+    external_prior_ = true;
   }
 
   bool HasCamera() const { return have_camera_; }
@@ -101,6 +102,7 @@ class Tracker {
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  // T_cur_last of the last step
   Eigen::Isometry3d last_good_T_c_w_ = Eigen::Isometry3d::Identity();  // last pose tracked by vision
   bool have_velocity_ = false;
+  bool external_prior_ = false;  // velocity_ was set by SetMotionPrior for this Track()
   KeyFrame* reference_ = nullptr;
   KeyFrame* pending_keyframe_ = nullptr;
   int64_t frame_index_ = 0, last_keyframe_frame_ = 0, last_reloc_frame_ = -1000;

@@ -6,10 +6,21 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "slam/measurements/ground_truth_pose.h"
+#include "slam/measurements/imu_sample.h"
 #include "slam/measurements/stereo_frame.h"
 
 namespace viqu::io {
+
+// An IMU recorded beside the cameras (EuRoC's imu0).
+struct InertialStream {
+  std::vector<ImuSample> samples;  // in time order
+  // The rectified left camera's optical frame (the frames' camera) in the IMU frame.
+  Eigen::Isometry3d T_imu_cam = Eigen::Isometry3d::Identity();
+  std::string source;              // the file the samples came from
+};
 
 class DatasetReader {
  public:
@@ -37,6 +48,8 @@ class DatasetReader {
   // Where the camera calibration came from (a file, or a published calibration), for the
   // record: printed and written to metrics.json.
   virtual const std::string& calibration_source() const = 0;
+  // The dataset's IMU, when it has one (EuRoC imu0/data.csv); nullptr otherwise.
+  virtual const InertialStream* inertial() const { return nullptr; }
 };
 
 }  // namespace viqu::io

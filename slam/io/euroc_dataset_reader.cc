@@ -7,6 +7,7 @@
 #include "slam/io/euroc_ground_truth.h"
 #include "slam/io/euroc_layout.h"
 #include "slam/io/image_files.h"
+#include "slam/io/imu_csv.h"
 #include "slam/io/pose_conversions.h"
 #include "slam/io/segment_instances.h"
 
@@ -25,18 +26,25 @@ EurocDatasetReader::EurocDatasetReader(const std::string& dir, const std::string
   if (!masks_dir.empty()) masks_.emplace(masks_dir);
 
   std::error_code ec;
+  const fs::path imu_yaml = fs::path(layout.mav0) / "imu0" / "sensor.yaml";
+  const Eigen::Isometry3d T_B_imu = fs::exists(imu_yaml, ec) ? ReadEurocSensorTransform(imu_yaml.string())
+                                                             : Eigen::Isometry3d::Identity();
+  const Eigen::Isometry3d T_imu_rect0 = T_B_imu.inverse() * layout.cam0.T_B_S * rectifier_->T_cam0_rect0();
   const fs::path gt_csv = fs::path(layout.mav0) / "state_groundtruth_estimate0" / "data.csv";
   if (fs::exists(gt_csv, ec)) {
     const std::vector<StampedPose> T_w_imu = ReadEurocGroundTruth(gt_csv.string());
-    const fs::path imu_yaml = fs::path(layout.mav0) / "imu0" / "sensor.yaml";
-    const Eigen::Isometry3d T_B_imu = fs::exists(imu_yaml, ec) ? ReadEurocSensorTransform(imu_yaml.string())
-                                                               : Eigen::Isometry3d::Identity();
     if (T_w_imu.empty()) {
       std::fprintf(stderr, "viqu: warning: %s lists no poses; no ground truth\n", gt_csv.c_str());
     } else {
-      const Eigen::Isometry3d T_imu_rect0 = T_B_imu.inverse() * layout.cam0.T_B_S * rectifier_->T_cam0_rect0();
       ground_truth_ = ChangeTrajectoryFrame(T_w_imu, T_imu_rect0);
     }
+  }
+  const fs::path imu_csv = fs::path(layout.mav0) / "imu0" / "data.csv";
+  if (fs::exists(imu_csv, ec)) {
+    inertial_.emplace();
+    inertial_->samples = ReadImuCsv(imu_csv.string());
+    inertial_->T_imu_cam = T_imu_rect0;
+    inertial_->source = imu_csv.string();
   }
 }
 

@@ -25,6 +25,9 @@ namespace viqu::io {
 // With a masks folder (InstanceMaskFolder, docs/MASKS.md) frames carry left_instance_id and
 // instances: the mask named like the cam0 image, in the raw cam0 geometry, goes through the
 // left image's rectification by nearest neighbour.
+//
+// The IMU, when mav0/imu0/data.csv exists: its samples and the rectified left camera in the IMU
+// frame, T_imu_rect0 = T_B_imu^-1 * T_B_cam0 * R1^T (inertial(); slam.mode full uses the gyro).
 class EurocDatasetReader : public DatasetReader {
  public:
   // `dir`: the folder that holds mav0/, or mav0 itself; `masks_dir`: instance masks, "" for
@@ -39,6 +42,7 @@ class EurocDatasetReader : public DatasetReader {
   bool HasSegmentation() const override { return masks_.has_value(); }
   const std::optional<std::vector<StampedPose>>& ground_truth() const override { return ground_truth_; }
   const std::string& calibration_source() const override { return calibration_source_; }
+  const InertialStream* inertial() const override { return inertial_ ? &*inertial_ : nullptr; }
 
  private:
   std::vector<ImagePair> frames_;               // cam0 (a) / cam1 (b) image files
@@ -48,6 +52,7 @@ class EurocDatasetReader : public DatasetReader {
   std::unique_ptr<StereoRectifier> rectifier_;
   std::optional<InstanceMaskFolder> masks_;     // --masks
   std::optional<std::vector<StampedPose>> ground_truth_;  // rectified left camera in world
+  std::optional<InertialStream> inertial_;     // imu0
   FrameSkipPolicy skip_;
 };
 

@@ -5,37 +5,13 @@
 #include "common/errors.h"
 #include "slam/io/euroc_ground_truth.h"
 #include "slam/io/euroc_layout.h"
-#include "slam/io/number_parsing.h"
-#include "slam/io/text_table_reader.h"
+#include "slam/io/imu_csv.h"
+#include "slam/io/stamped_rows.h"
 
 namespace viqu::io {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Rows of a data.csv: a stamp (ns, strictly increasing) and `n` numbers.
-template <typename F>
-void ReadRows(const fs::path& path, size_t n, F&& on_row) {
-  TextTableReader table(path.string(), ',');
-  std::vector<std::string> f;
-  std::vector<double> v(n);
-  int64_t last = 0;
-  bool first = true;
-  while (table.Next(&f)) {
-    if (f.size() != n + 1) {
-      table.Fail("expected " + std::to_string(n + 1) + " fields, got " + std::to_string(f.size()));
-    }
-    int64_t t = 0;
-    if (!ParseInt64(f[0], &t)) table.Fail("timestamp '" + f[0] + "' is not an integer (ns)");
-    if (!first && t <= last) table.Fail("timestamp " + f[0] + " does not follow " + std::to_string(last));
-    for (size_t i = 0; i < n; ++i) {
-      if (!ParseFiniteDouble(f[i + 1], &v[i])) table.Fail("field " + std::to_string(i + 2) + " '" + f[i + 1] + "' is not a finite number");
-    }
-    on_row(t, v, table);
-    last = t;
-    first = false;
-  }
-}
 
 bool Bit(double x, const TextTableReader& table) {
   if (x != 0 && x != 1) table.Fail("a contact field must be 0 or 1");
@@ -53,14 +29,8 @@ std::optional<Proprioception> ReadViquProprioception(const std::string& dir) {
   }
   Proprioception p;
   p.urdf_path = (mav0 / "robot.urdf").string();
-  ReadRows(mav0 / "imu0" / "data.csv", 6, [&](int64_t t, const std::vector<double>& v, const TextTableReader&) {
-    ImuSample s;
-    s.t_ns = t;
-    s.gyro_i = Eigen::Vector3d(v[0], v[1], v[2]);
-    s.accel_i = Eigen::Vector3d(v[3], v[4], v[5]);
-    p.imu.push_back(s);
-  });
-  ReadRows(mav0 / "joints0" / "data.csv", 2 * kNumJoints + kNumLegs,
+  p.imu = ReadImuCsv((mav0 / "imu0" / "data.csv").string());
+  ReadStampedRows((mav0 / "joints0" / "data.csv").string(), 2 * kNumJoints + kNumLegs,
            [&](int64_t t, const std::vector<double>& v, const TextTableReader& table) {
              JointState j;
              j.t_ns = t;
@@ -71,7 +41,7 @@ std::optional<Proprioception> ReadViquProprioception(const std::string& dir) {
              for (int i = 0; i < kNumLegs; ++i) j.contact[i] = Bit(v[2 * kNumJoints + i], table);
              p.joints.push_back(j);
            });
-  ReadRows(mav0 / "contact0" / "data.csv", 2 * kNumLegs,
+  ReadStampedRows((mav0 / "contact0" / "data.csv").string(), 2 * kNumLegs,
            [&](int64_t t, const std::vector<double>& v, const TextTableReader& table) {
              ContactReading touch{t, {}}, planned{t, {}};
              for (int i = 0; i < kNumLegs; ++i) {

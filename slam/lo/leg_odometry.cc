@@ -18,6 +18,8 @@ constexpr double kStartPositionStd = 1e-3;  // (m)
 constexpr double kStartVelocityStd = 0.05;  // (m/s)
 constexpr double kStartFootStd = 0.01;      // (m)
 
+}  // namespace
+
 AttitudeFilterOptions AttitudeOptionsOf(const slam::LegOdometrySettings& s) {
   AttitudeFilterOptions o;
   o.attitude_gain = s.attitude_gain;
@@ -26,8 +28,6 @@ AttitudeFilterOptions AttitudeOptionsOf(const slam::LegOdometrySettings& s) {
   o.gravity_mps2 = kGravity;
   return o;
 }
-
-}  // namespace
 
 LegOdometry::LegOdometry(const slam::LegOdometrySettings& settings, const kin::LegKinematics& kin)
     : settings_(settings), kin_(kin), attitude_(AttitudeOptionsOf(settings)) {

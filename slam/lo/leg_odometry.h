@@ -22,6 +22,9 @@
 
 namespace viqu::lo {
 
+// The attitude filter's options from the settings' attitude_* keys (standard gravity).
+AttitudeFilterOptions AttitudeOptionsOf(const slam::LegOdometrySettings& s);
+
 // What the estimator concluded about one foot at the last encoder reading.
 struct FootStatus {
   bool contact = false;          // in contact by the configured source
