@@ -127,6 +127,27 @@ TEST(AttitudeFilter, IntegratesTheGyroExactlyWithoutCorrection) {
   EXPECT_NEAR(aa.axis().z(), 1.0, 1e-9);
 }
 
+TEST(AttitudeFilter, IntegratesARampingRateWithoutLag) {
+  // The rate about z grows at 2 rad/s^2 for 1 s: the yaw is t^2 = 1 rad at the end. Holding each
+  // sample's rate over the next interval would lag half an interval (5 mrad here); the mean of
+  // the interval's two rates is exact for a linear ramp.
+  lo::AttitudeFilterOptions o;
+  o.attitude_gain = 0;
+  o.gyro_bias_gain = 0;
+  lo::AttitudeFilter f(o);
+  f.Reset(0, Eigen::Quaterniond::Identity());
+  for (int k = 0; k <= 200; ++k) {
+    ImuSample s;
+    s.t_ns = k * 5'000'000LL;
+    s.gyro_i = Eigen::Vector3d(0, 0, 2.0 * s.t_ns * 1e-9);
+    s.accel_i = Eigen::Vector3d(0, 0, 9.81);
+    f.Add(s);
+  }
+  const Eigen::AngleAxisd aa(f.q_w_b());
+  EXPECT_NEAR(aa.angle(), 1.0, 1e-9);
+  EXPECT_NEAR(aa.axis().z(), 1.0, 1e-9);
+}
+
 TEST(AttitudeFilter, GravityCorrectsTiltAndEstimatesTheGyroBias) {
   lo::AttitudeFilterOptions o;
   // Bias gain 0.02 1/s^2 with gain 0.5 1/s: the slow pole of s^2 + 0.5 s + 0.02 is at 0.044 1/s,

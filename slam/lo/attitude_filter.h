@@ -29,9 +29,10 @@ class AttitudeFilter {
   void Reset(int64_t t_ns, const Eigen::Quaterniond& q_w_b,
              const Eigen::Vector3d& gyro_bias = Eigen::Vector3d::Zero());
 
-  // Integrates the gyro from the previous sample's time to this one (the previous rate held over
-  // the interval) and applies the gravity correction of this sample. The first sample after
-  // Reset only stores the rates. Throws std::invalid_argument for time going backwards.
+  // Integrates the gyro from the previous sample's time to this one (the mean of the two samples'
+  // rates: exact for a rate that changes linearly) and applies the gravity correction of this
+  // sample. The first sample after Reset only stores the rates. Throws std::invalid_argument
+  // for time going backwards.
   void Add(const ImuSample& s);
 
   // Replaces the orientation (a correction from elsewhere, e.g. vision); the bias estimate stays.
@@ -49,6 +50,7 @@ class AttitudeFilter {
   Eigen::Vector3d last_gyro_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d correction_ = Eigen::Vector3d::Zero();  // proportional term of the last sample (rad/s)
   std::optional<int64_t> last_t_ns_;
+  bool have_rate_ = false;  // a sample has come since Reset
   bool corrected_ = false;
 };
 
