@@ -1,7 +1,8 @@
 // libFuzzer target: the text parts of the dataset readers (slam/io): the first byte picks the
 // reader, the rest is the file. EuRoC image lists and ground truth, EuRoC/viqu sensor.yaml
 // (OpenCV-flavoured YAML), TUM image lists and camera files (viqu and ORB-SLAM2/3), and a viqu
-// recording's imu0 stream through the proprioception reader.
+// recording's imu0 stream through the proprioception reader (io::ReadImuCsv, which also reads
+// EuRoC's imu0 for the gyro's motion prior).
 #include <filesystem>
 
 #include "common/errors.h"
