@@ -67,6 +67,7 @@ class SlamRun {
   slam::GyroMotionPrior* gyro_ = nullptr;
   // The tracker's prediction misses (TrackResult::prior_err_*), over the frames tracked from one.
   std::vector<double> prior_err_deg_, prior_err_mm_;
+  std::vector<double> search_px_;  // the first search window of each frame (px)
   int external_priors_ = 0;
 };
 

@@ -98,6 +98,9 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(ta.weak_inliers_factor, tb.weak_inliers_factor);
   EXPECT_EQ(ta.relocalised_frames, tb.relocalised_frames);
   EXPECT_EQ(ta.relocalised_min_inliers, tb.relocalised_min_inliers);
+  EXPECT_EQ(ta.prior_window_factor, tb.prior_window_factor);
+  EXPECT_EQ(ta.prior_window_frames, tb.prior_window_frames);
+  EXPECT_EQ(ta.prior_window_min_px, tb.prior_window_min_px);
 
   const MappingSettings& ma = a.mapping;
   const MappingSettings& mb = b.mapping;
@@ -157,7 +160,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 23 + 9 + 8 + 3 + 14 + 16;
+constexpr int kLeafKeys = 4 + 6 + 10 + 26 + 9 + 8 + 3 + 14 + 16;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -261,7 +264,7 @@ TEST_F(SlamSettingsTest, UnknownKeyNamesFileLineAndColumn) {
   EXPECT_EQ(msg.rfind(Path() + ":4:3: unknown key 'tracking.min_inlier' (expected one of: motion_search_px, ", 0),
             0u)
       << msg;
-  EXPECT_NE(msg.find("relocalised_min_inliers)"), std::string::npos) << msg;  // the list ends with the last key
+  EXPECT_NE(msg.find("prior_window_min_px)"), std::string::npos) << msg;  // the list ends with the last key
 }
 
 TEST_F(SlamSettingsTest, UnknownKeysAtTopLevelAndInEverySection) {

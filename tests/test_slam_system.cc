@@ -128,6 +128,54 @@ TEST(SlamSystem, TracksASyntheticWallSequenceToTheKnownPath) {
   EXPECT_EQ(system.Stats().lost_frames, 0);
 }
 
+// With an external motion prior (mode full) the first search window follows the prior's error:
+// an exact prior narrows it to tracking.prior_window_min_px; the filter's translation
+// uncertainty widens it (fx * sigma / median depth, times prior_window_factor); a prior that
+// missed by half a degree keeps it wide for prior_window_frames frames. Without a prior it is
+// motion_search_px.
+TEST(SlamSystem, TheMotionPriorsErrorSizesTheSearchWindow) {
+  slam::SlamSettings settings;
+  const slam::TrackingSettings& ts = settings.tracking;
+  slam::SlamSystem system(settings);
+  auto exact = [](int k) { return TruePose(k).inverse() * TruePose(k - 1); };
+  std::vector<double> window;
+  auto track = [&](int k) {
+    const slam::TrackResult r = system.Track(MakeFrame(k));
+    EXPECT_NE(r.status, slam::TrackStatus::kLost) << k;
+    window.push_back(r.search_px);
+    return r;
+  };
+  track(0);
+  for (int k = 1; k <= 10; ++k) {
+    system.SetMotionPrior(exact(k));
+    const slam::TrackResult r = track(k);
+    EXPECT_TRUE(r.external_prior);
+    EXPECT_LT(r.prior_err_deg, 0.05) << k;
+  }
+  EXPECT_EQ(window[1], ts.motion_search_px);  // nothing measured yet
+  for (int k = 2; k <= 10; ++k) EXPECT_EQ(window[k], ts.prior_window_min_px) << k;
+  // A 2 cm translation uncertainty: the wall is about 1 m away, so 2 * 400 px * 0.02 m / ~1 m.
+  system.SetMotionPrior(exact(11), 0.02);
+  const double wide = track(11).search_px;
+  std::printf("window with an exact prior %.1f px, with 2 cm of translation uncertainty %.1f px\n", window[10], wide);
+  EXPECT_GT(wide, 8);
+  EXPECT_LE(wide, 3 * ts.motion_search_px);
+  // A prior turned by 0.5 deg (3.5 px at 400 px): still tracked, and the next windows are about
+  // twice its miss until it leaves the remembered frames.
+  system.SetMotionPrior(Eigen::Isometry3d(Eigen::AngleAxisd(0.5 * M_PI / 180, Eigen::Vector3d::UnitY())) * exact(12));
+  const slam::TrackResult missed = track(12);
+  EXPECT_GT(missed.prior_err_deg, 0.4);
+  for (int k = 13; k <= 12 + ts.prior_window_frames; ++k) {
+    system.SetMotionPrior(exact(k));
+    EXPECT_GT(track(k).search_px, 5.0) << k;
+  }
+  system.SetMotionPrior(exact(13 + ts.prior_window_frames));
+  EXPECT_EQ(track(13 + ts.prior_window_frames).search_px, ts.prior_window_min_px);
+  // No prior: the constant-velocity guess keeps motion_search_px.
+  EXPECT_EQ(track(14 + ts.prior_window_frames).search_px, ts.motion_search_px);
+  system.Finish();
+}
+
 // Mapping on its own thread (mapping.mode: realtime) with a keyframe every few frames, so that
 // the mapper works while the tracker tracks (the TSan build runs this: scripts/sanitize.sh tsan).
 TEST(SlamSystem, RealtimeMappingTracksTheKnownPath) {

@@ -48,7 +48,9 @@ SlamSystem::~SlamSystem() {
   if (impl_) impl_->mapper.reset();
 }
 
-void SlamSystem::SetMotionPrior(const Eigen::Isometry3d& T_cur_last) { impl_->tracker.SetMotionPrior(T_cur_last); }
+void SlamSystem::SetMotionPrior(const Eigen::Isometry3d& T_cur_last, double sigma_m) {
+  impl_->tracker.SetMotionPrior(T_cur_last, sigma_m);
+}
 
 TrackResult SlamSystem::Track(const StereoFrame& frame) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -54,6 +54,7 @@ struct TrackResult {
   double prior_err_deg = -1;
   double prior_err_mm = -1;
   bool external_prior = false;   // the prediction came from SetMotionPrior
+  double search_px = 0;          // the first window of the search from the prediction (px, level 0)
   std::vector<ObjectReport> objects;  // movable objects in the frame's masks
   std::vector<FeatureMark> marks;     // every feature's fate; only with SetRecordFeatures(true)
 };
@@ -91,8 +92,10 @@ class SlamSystem {
   // A motion prior for the next Track(): the camera's motion since the last tracked frame,
   // T_cur_last (for example from leg odometry and the IMU, slam.mode full). It replaces the
   // constant-velocity guess in tracking and carries the pose while vision fails (lost frames,
-  // a new map segment after loss starts from it). Used for one frame.
-  void SetMotionPrior(const Eigen::Isometry3d& T_cur_last);
+  // a new map segment after loss starts from it). Used for one frame. sigma_m: the standard
+  // deviation of its translation (m; 0 = unknown), which can widen the first search window
+  // (tracking.prior_window_*).
+  void SetMotionPrior(const Eigen::Isometry3d& T_cur_last, double sigma_m = 0);
 
   // Fill TrackResult::marks (for overlay videos; off by default).
   void SetRecordFeatures(bool on);

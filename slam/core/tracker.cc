@@ -182,6 +182,17 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   r.t_ns = frame.t_ns;
   r.external_prior = external_prior_;
   external_prior_ = false;  // a motion prior holds for one Track()
+  // The first window of the motion-model search: sized from the external prior's error when
+  // there is one and it has been measured (tracking.prior_window_*), motion_search_px otherwise.
+  const TrackingSettings& ts = settings_.tracking;
+  search_px_ = ts.motion_search_px;
+  if (r.external_prior && !prior_miss_px_.empty() && median_depth_m_ > 0) {
+    const double miss_px = *std::max_element(prior_miss_px_.begin(), prior_miss_px_.end());
+    const double filter_px = cam_.fx * prior_sigma_m_ / median_depth_m_;
+    search_px_ = std::clamp(ts.prior_window_factor * std::max(miss_px, filter_px), ts.prior_window_min_px,
+                            3 * ts.motion_search_px);
+  }
+  r.search_px = search_px_;
 
   std::lock_guard<std::mutex> lock(map_->mutex);
   temporary_.clear();
@@ -244,6 +255,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
         r.prior_err_deg = Eigen::AngleAxisd(miss.rotation()).angle() * 180.0 / M_PI;
         r.prior_err_mm = 1e3 * (cur_.T_c_w.inverse().translation() - predicted_T_c_w.inverse().translation()).norm();
       }
+      MeasurePriorMiss(predicted && r.external_prior, predicted_T_c_w);
       velocity_ = cur_.T_c_w * last_.T_c_w.inverse();
       have_velocity_ = true;
     }
@@ -347,13 +359,36 @@ void Tracker::DropTemporaryPoints(Frame* f) const {
   }
 }
 
+void Tracker::MeasurePriorMiss(bool external, const Eigen::Isometry3d& predicted_T_c_w) {
+  // Over the inliers of the frame just tracked: their depth, and how far the prediction put them
+  // from where the tracked pose does (px).
+  std::vector<double> depth, miss;
+  for (size_t i = 0; i < cur_.size(); ++i) {
+    const MapPoint* p = cur_.points[i];
+    if (!p || cur_.outlier[i]) continue;
+    const Eigen::Vector3d tracked = cur_.T_c_w * p->p_w;
+    const Eigen::Vector3d guessed = predicted_T_c_w * p->p_w;
+    if (tracked.z() <= 0 || guessed.z() <= 0) continue;
+    depth.push_back(tracked.z());
+    miss.push_back((cam_.Project(tracked) - cam_.Project(guessed)).norm());
+  }
+  if (depth.empty()) return;
+  std::nth_element(depth.begin(), depth.begin() + depth.size() / 2, depth.end());
+  median_depth_m_ = depth[depth.size() / 2];
+  if (!external) return;
+  const size_t k = std::min(miss.size() - 1, static_cast<size_t>(0.9 * miss.size()));
+  std::nth_element(miss.begin(), miss.begin() + k, miss.end());
+  prior_miss_px_.push_back(miss[k]);
+  while (static_cast<int>(prior_miss_px_.size()) > settings_.tracking.prior_window_frames) prior_miss_px_.pop_front();
+}
+
 bool Tracker::TrackWithMotionModel() {
-  // The constant-velocity prediction with the normal window; when that matches weakly, a window
-  // three times as wide, the last pose (no motion) with five times the window, and the reference
+  // The constant-velocity prediction (or the external prior) with the first window (search_px_);
+  // when that matches weakly, a window three times as wide, the last pose (no motion) with five times the window, and the reference
   // keyframe by descriptor; the attempt with the most inliers wins. A trotting robot's camera
   // turns 4 degrees a frame and, on a jolt, 10 (60 px here): the prediction can miss by more
   // than the normal window.
-  const double radius = settings_.tracking.motion_search_px;
+  const double radius = search_px_;
   const int good = static_cast<int>(settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers);
   const Eigen::Isometry3d predicted = velocity_ * last_.T_c_w;
   const std::pair<Eigen::Isometry3d, double> attempts[] = {

@@ -2,6 +2,7 @@
 // Tracking: features of each frame, its pose against the map (constant-velocity motion model,
 // reference keyframe as fallback, then the local map), outlier rejection, the keyframe
 // decision, and relocalisation when lost.
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -62,11 +63,13 @@ class Tracker {
   }
 
   // Motion of the camera from the last frame to the next one (T_cur_last), used instead of the
-  // constant-velocity model for the next Track() only (SlamSystem::SetMotionPrior).
-  void SetMotionPrior(const Eigen::Isometry3d& T_cur_last) {
+  // constant-velocity model for the next Track() only (SlamSystem::SetMotionPrior); sigma_m: the
+  // standard deviation of its translation (m), which widens the first search window.
+  void SetMotionPrior(const Eigen::Isometry3d& T_cur_last, double sigma_m) {
     velocity_ = T_cur_last;
     have_velocity_ = true;
     external_prior_ = true;
+    prior_sigma_m_ = sigma_m;
   }
 
   bool HasCamera() const { return have_camera_; }
@@ -78,6 +81,9 @@ class Tracker {
   bool Initialise();
   void AddTemporaryPointsToLastFrame();
   bool TrackWithMotionModel();
+  // After a frame tracked from a prediction: the median depth of its inliers, and (external: the
+  // prediction was an external prior) the 90th percentile of the prediction's miss in pixels.
+  void MeasurePriorMiss(bool external, const Eigen::Isometry3d& predicted_T_c_w);
   bool TrackReferenceKeyFrame();
   int TrackLocalMap();
   bool Relocalise();
@@ -103,6 +109,13 @@ class Tracker {
   Eigen::Isometry3d last_good_T_c_w_ = Eigen::Isometry3d::Identity();  // last pose tracked by vision
   bool have_velocity_ = false;
   bool external_prior_ = false;  // velocity_ was set by SetMotionPrior for this Track()
+  double prior_sigma_m_ = 0;     // its translation's standard deviation (m)
+  // The first search window for this frame (px, level 0), and what sizes it with an external
+  // prior: the prior's recent misses (each frame's 90th percentile, px) and the median depth of
+  // the last tracked frame's points (m).
+  double search_px_ = 0;
+  std::deque<double> prior_miss_px_;
+  double median_depth_m_ = 0;
   KeyFrame* reference_ = nullptr;
   KeyFrame* pending_keyframe_ = nullptr;
   int64_t frame_index_ = 0, last_keyframe_frame_ = 0, last_reloc_frame_ = -1000;

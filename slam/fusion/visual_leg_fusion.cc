@@ -1,11 +1,23 @@
 #include "slam/fusion/visual_leg_fusion.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
 namespace viqu::slam {
 
 void VisualLegFusion::BeforeTrack(SlamSystem* system) {
   const Eigen::Isometry3d T_w_c = lo_->T_w_body() * T_body_cam_;
-  if (last_T_w_c_) system->SetMotionPrior(T_w_c.inverse() * *last_T_w_c_);
+  if (last_T_w_c_) {
+    // The translation's uncertainty over the interval: the filter's velocity uncertainty (its
+    // largest axis) times the time since the last frame.
+    const Eigen::Matrix3d P_vv = lo_->filter().covariance().block<3, 3>(3, 3);
+    const double sigma_v = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P_vv).eigenvalues().maxCoeff()));
+    system->SetMotionPrior(T_w_c.inverse() * *last_T_w_c_, sigma_v * (lo_->t_ns() - last_t_ns_) * 1e-9);
+  }
   last_T_w_c_ = T_w_c;
+  last_t_ns_ = lo_->t_ns();
 }
 
 void VisualLegFusion::AfterTrack(const TrackResult& r) {

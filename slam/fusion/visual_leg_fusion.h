@@ -1,7 +1,9 @@
 #pragma once
 // Fusion of the visual estimate with leg odometry + IMU (slam.mode full). Per camera frame:
 //  - before tracking, the filter's motion of the camera since the last frame becomes the
-//    tracker's motion prior (instead of the constant-velocity guess); while vision fails it
+//    tracker's motion prior (instead of the constant-velocity guess), with the uncertainty of its
+//    translation (the filter's velocity covariance over the interval), which sizes the tracker's
+//    first search window together with the prior's measured misses; while vision fails it
 //    carries the pose, and a new map segment after a loss starts from it;
 //  - after tracking, a frame tracked with enough inliers corrects the filter: its position and
 //    orientation are set to the visual ones (vision is about ten times more accurate here).
@@ -35,6 +37,7 @@ class VisualLegFusion {
   Eigen::Isometry3d T_body_cam_;
   int min_inliers_;
   std::optional<Eigen::Isometry3d> last_T_w_c_;  // the filter's camera pose at the last frame
+  int64_t last_t_ns_ = 0;                        // the filter's time then (ns)
   int corrections_ = 0, carried_ = 0;
 };
 

@@ -54,6 +54,8 @@ class LegOdometry {
   void CorrectPose(const Eigen::Isometry3d& T_w_body);
 
   bool started() const { return started_; }
+  // Time of the last IMU sample taken in (ns; 0 before any).
+  int64_t t_ns() const { return last_imu_ns_.value_or(0); }
   Eigen::Isometry3d T_w_body() const;   // current estimate of the trunk (IMU) pose
   Eigen::Vector3d velocity() const { return kf_.velocity(); }
   const std::array<FootStatus, kNumLegs>& feet() const { return feet_; }

@@ -94,6 +94,9 @@ void ReadTracking(YamlMapReader* m, TrackingSettings* t) {
   m->Number("weak_inliers_factor", &t->weak_inliers_factor, NumberRange::Closed(0, 100));
   m->Integer("relocalised_frames", &t->relocalised_frames, kCount0);
   m->Integer("relocalised_min_inliers", &t->relocalised_min_inliers, kCount3);
+  m->Number("prior_window_factor", &t->prior_window_factor, NumberRange::OpenClosed(0, 100));
+  m->Integer("prior_window_frames", &t->prior_window_frames, kCount1);
+  m->Number("prior_window_min_px", &t->prior_window_min_px, NumberRange::OpenClosed(0, 1000));
   m->RejectUnknownKeys();
   if (t->keyframe_min_frames > t->keyframe_max_frames) {
     FailAtEither(m, "keyframe_min_frames", m, "keyframe_max_frames",
@@ -273,6 +276,9 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "weak_inliers_factor", t.weak_inliers_factor);
   EmitInt(out, "relocalised_frames", t.relocalised_frames);
   EmitInt(out, "relocalised_min_inliers", t.relocalised_min_inliers);
+  EmitNumber(out, "prior_window_factor", t.prior_window_factor);
+  EmitInt(out, "prior_window_frames", t.prior_window_frames);
+  EmitNumber(out, "prior_window_min_px", t.prior_window_min_px);
   out << YAML::EndMap;
 
   const MappingSettings& m = s.mapping;

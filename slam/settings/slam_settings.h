@@ -35,6 +35,14 @@ struct TrackingSettings {
   double weak_inliers_factor = 3;    // fewer inliers than this times min_inliers: search again with windows 3x as wide (ratio)
   int relocalised_frames = 20;       // frames after a relocalisation that need relocalised_min_inliers and make no keyframe (frames)
   int relocalised_min_inliers = 50;  // inliers a frame needs within relocalised_frames after a relocalisation (count)
+  // With an external motion prior (mode full: leg odometry + IMU, or the gyro) the first window is
+  // sized from the prior's error instead of motion_search_px: prior_window_factor times the larger
+  // of (the largest 90th-percentile miss of the prior, in pixels, over the last prior_window_frames
+  // frames) and (the filter's velocity uncertainty over the frame interval, projected at the
+  // scene's median depth), within [prior_window_min_px, 3 * motion_search_px].
+  double prior_window_factor = 2;    // (ratio)
+  int prior_window_frames = 20;      // (frames)
+  double prior_window_min_px = 4;    // (px, level 0)
 };
 
 struct MappingSettings {
