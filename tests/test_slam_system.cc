@@ -129,12 +129,14 @@ TEST(SlamSystem, TracksASyntheticWallSequenceToTheKnownPath) {
 }
 
 // With an external motion prior (mode full) the first search window follows the prior's error:
-// an exact prior narrows it to tracking.prior_window_min_px; the filter's translation
-// uncertainty widens it (fx * sigma / median depth, times prior_window_factor); a prior that
-// missed by half a degree keeps it wide for prior_window_frames frames. Without a prior it is
-// motion_search_px.
+// an exact prior narrows it to tracking.prior_window_min_px (4 px here; the default minimum is
+// motion_search_px, so that by default it only widens); the filter's translation uncertainty
+// widens it (fx * sigma / median depth, times prior_window_factor); a prior that missed by half a
+// degree keeps it wide for prior_window_frames frames. Without a prior it is motion_search_px.
 TEST(SlamSystem, TheMotionPriorsErrorSizesTheSearchWindow) {
   slam::SlamSettings settings;
+  EXPECT_EQ(settings.tracking.prior_window_min_px, settings.tracking.motion_search_px);
+  settings.tracking.prior_window_min_px = 4;
   const slam::TrackingSettings& ts = settings.tracking;
   slam::SlamSystem system(settings);
   auto exact = [](int k) { return TruePose(k).inverse() * TruePose(k - 1); };
@@ -174,6 +176,19 @@ TEST(SlamSystem, TheMotionPriorsErrorSizesTheSearchWindow) {
   // No prior: the constant-velocity guess keeps motion_search_px.
   EXPECT_EQ(track(14 + ts.prior_window_frames).search_px, ts.motion_search_px);
   system.Finish();
+  // The defaults: an exact prior keeps motion_search_px, an uncertain one widens it.
+  slam::SlamSystem defaults{slam::SlamSettings()};
+  defaults.Track(MakeFrame(0));
+  for (int k = 1; k <= 3; ++k) {
+    defaults.SetMotionPrior(exact(k), k == 3 ? 0.04 : 0.0);
+    const double px = defaults.Track(MakeFrame(k)).search_px;
+    if (k < 3) {
+      EXPECT_EQ(px, ts.motion_search_px) << k;
+    } else {
+      EXPECT_GT(px, ts.motion_search_px);
+    }
+  }
+  defaults.Finish();
 }
 
 // Mapping on its own thread (mapping.mode: realtime) with a keyframe every few frames, so that
