@@ -14,6 +14,11 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh" >/dev/null   # packages (the normal build is reused by nothing here)
 jobs=${VIQU_JOBS:-$(nproc)}
+# ccache hashes the build folder's path into every -g compilation, so a fresh clone (as CI
+# makes) would rebuild every sanitizer object: with paths taken relative to the checkout and the
+# folder left out of the hash, clones on one machine share them (debug info then names the
+# folder of whichever build compiled an object first).
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
 kind=${1:-asan}
 shift || true
 case "$kind" in
