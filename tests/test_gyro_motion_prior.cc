@@ -60,6 +60,15 @@ Eigen::Isometry3d ImuToCamera() {
   return T;
 }
 
+// What the tracker tells the prior after a frame: its time, pose and status.
+void AfterFrame(slam::GyroMotionPrior* prior, int64_t t_ns, const Eigen::Isometry3d& T_w_c, slam::TrackStatus status) {
+  slam::TrackResult r;
+  r.t_ns = t_ns;
+  r.T_w_c = T_w_c;
+  r.status = status;
+  prior->AfterTrack(r);
+}
+
 double AngleDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return Eigen::AngleAxisd(a.linear() * b.linear().transpose()).angle() * 180 / M_PI;
 }
@@ -106,11 +115,7 @@ Misses RunMotion(const Motion& m, double seconds, double gyro_noise, const Eigen
         mm->push_back(1e3 * (predicted.translation() - truth.translation()).norm());
       }
     }
-    slam::TrackResult r;
-    r.t_ns = t_frame;
-    r.T_w_c = truth;
-    r.status = T_w_c.empty() ? slam::TrackStatus::kInitialised : slam::TrackStatus::kTracking;
-    prior.AfterTrack(r);
+    AfterFrame(&prior, t_frame, truth, T_w_c.empty() ? slam::TrackStatus::kInitialised : slam::TrackStatus::kTracking);
     T_w_c.push_back(truth);
   }
   return out;
@@ -176,11 +181,7 @@ TEST(GyroMotionPrior, CarriesTheCameraAboutTheImuOnAPureTurn) {
       EXPECT_LT(AngleDeg(predicted, truth), 1e-6) << k;
       EXPECT_LT((predicted.translation() - truth.translation()).norm(), 1e-6) << k;
     }
-    slam::TrackResult r;
-    r.t_ns = t_frame;
-    r.T_w_c = truth;
-    r.status = slam::TrackStatus::kTracking;
-    prior.AfterTrack(r);
+    AfterFrame(&prior, t_frame, truth, slam::TrackStatus::kTracking);
     last = truth;
   }
 }
@@ -192,7 +193,9 @@ TEST(GyroMotionPrior, StartsLevelledByTheFirstSampleThatReadsGravity) {
   // its gravity correction would turn every prior by about 0.7 degrees; levelled by the first
   // sample that reads g, the prior is exact.
   const Eigen::Matrix3d tilt = Eigen::AngleAxisd(0.5236, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  auto R_w_b = [&](double t) -> Eigen::Matrix3d { return Eigen::AngleAxisd(t, Eigen::Vector3d::UnitZ()).toRotationMatrix() * tilt; };
+  auto R_w_b = [&](double t) -> Eigen::Matrix3d {
+    return Eigen::AngleAxisd(t, Eigen::Vector3d::UnitZ()).toRotationMatrix() * tilt;
+  };
   const Eigen::Isometry3d T_imu_cam = ImuToCamera();
   slam::GyroMotionPrior prior(lo::AttitudeFilterOptions{}, T_imu_cam);
   int64_t t_imu = 0;
@@ -203,8 +206,8 @@ TEST(GyroMotionPrior, StartsLevelledByTheFirstSampleThatReadsGravity) {
       ImuSample s;
       s.t_ns = t_imu;
       s.gyro_i = tilt.transpose() * Eigen::Vector3d(0, 0, 1.0);  // the world's z in the body
-      s.accel_i = t_imu < 3 * kImuStepNs ? Eigen::Vector3d::Zero()
-                                         : Eigen::Vector3d(R_w_b(t_imu * 1e-9).transpose() * Eigen::Vector3d(0, 0, kGravity));
+      const Eigen::Vector3d up_b = R_w_b(t_imu * 1e-9).transpose() * Eigen::Vector3d(0, 0, kGravity);
+      s.accel_i = t_imu < 3 * kImuStepNs ? Eigen::Vector3d::Zero() : up_b;
       prior.AddImu(s);
     }
     Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
@@ -217,11 +220,7 @@ TEST(GyroMotionPrior, StartsLevelledByTheFirstSampleThatReadsGravity) {
     if (p) {
       EXPECT_LT(AngleDeg(last * p->inverse(), truth), 1e-4) << k;
     }
-    slam::TrackResult r;
-    r.t_ns = t_frame;
-    r.T_w_c = truth;
-    r.status = k == 0 ? slam::TrackStatus::kInitialised : slam::TrackStatus::kTracking;
-    prior.AfterTrack(r);
+    AfterFrame(&prior, t_frame, truth, k == 0 ? slam::TrackStatus::kInitialised : slam::TrackStatus::kTracking);
     last = truth;
   }
 }
@@ -239,10 +238,7 @@ TEST(GyroMotionPrior, GivesNothingAfterALostFrame) {
     }
   };
   auto after = [&](int64_t t_ns, slam::TrackStatus status) {
-    slam::TrackResult r;
-    r.t_ns = t_ns;
-    r.status = status;
-    prior.AfterTrack(r);
+    AfterFrame(&prior, t_ns, Eigen::Isometry3d::Identity(), status);
   };
   imu_until(kFrameStepNs);
   EXPECT_FALSE(prior.NextFrame(kFrameStepNs).has_value());  // no frame with a pose yet

@@ -2,6 +2,7 @@
 // attitude filter, and the contact and slip logic on synthetic foot tracks of the rat's legs
 // (URDF kinematics, no simulator).
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -108,21 +109,27 @@ TEST(LegImuKf, AStationaryRobotStaysPutUnderNoise) {
   EXPECT_LT(v_mean, 0.01);
 }
 
-TEST(AttitudeFilter, IntegratesTheGyroExactlyWithoutCorrection) {
+// The attitude filter with its gravity correction and bias estimate off, fed a rate about z of
+// omega(t) (rad/s) at 200 Hz from 0 to `seconds`: its orientation at the end.
+Eigen::AngleAxisd IntegrateGyroAboutZ(const std::function<double(double)>& omega, double seconds) {
   lo::AttitudeFilterOptions o;
   o.attitude_gain = 0;
   o.gyro_bias_gain = 0;
   lo::AttitudeFilter f(o);
   f.Reset(0, Eigen::Quaterniond::Identity());
-  for (int k = 0; k <= 400; ++k) {
+  for (int64_t t_ns = 0; t_ns <= static_cast<int64_t>(seconds * 1e9); t_ns += 5'000'000) {
     ImuSample s;
-    s.t_ns = k * 5'000'000LL;
-    s.gyro_i = Eigen::Vector3d(0, 0, 0.5);
+    s.t_ns = t_ns;
+    s.gyro_i = Eigen::Vector3d(0, 0, omega(t_ns * 1e-9));
     s.accel_i = Eigen::Vector3d(0, 0, 9.81);
     f.Add(s);
   }
+  return Eigen::AngleAxisd(f.q_w_b());
+}
+
+TEST(AttitudeFilter, IntegratesTheGyroExactlyWithoutCorrection) {
   // 2 s at 0.5 rad/s about z: yaw 1 rad.
-  const Eigen::AngleAxisd aa(f.q_w_b());
+  const Eigen::AngleAxisd aa = IntegrateGyroAboutZ([](double) { return 0.5; }, 2.0);
   EXPECT_NEAR(aa.angle(), 1.0, 1e-9);
   EXPECT_NEAR(aa.axis().z(), 1.0, 1e-9);
 }
@@ -131,19 +138,7 @@ TEST(AttitudeFilter, IntegratesARampingRateWithoutLag) {
   // The rate about z grows at 2 rad/s^2 for 1 s: the yaw is t^2 = 1 rad at the end. Holding each
   // sample's rate over the next interval would lag half an interval (5 mrad here); the mean of
   // the interval's two rates is exact for a linear ramp.
-  lo::AttitudeFilterOptions o;
-  o.attitude_gain = 0;
-  o.gyro_bias_gain = 0;
-  lo::AttitudeFilter f(o);
-  f.Reset(0, Eigen::Quaterniond::Identity());
-  for (int k = 0; k <= 200; ++k) {
-    ImuSample s;
-    s.t_ns = k * 5'000'000LL;
-    s.gyro_i = Eigen::Vector3d(0, 0, 2.0 * s.t_ns * 1e-9);
-    s.accel_i = Eigen::Vector3d(0, 0, 9.81);
-    f.Add(s);
-  }
-  const Eigen::AngleAxisd aa(f.q_w_b());
+  const Eigen::AngleAxisd aa = IntegrateGyroAboutZ([](double t) { return 2.0 * t; }, 1.0);
   EXPECT_NEAR(aa.angle(), 1.0, 1e-9);
   EXPECT_NEAR(aa.axis().z(), 1.0, 1e-9);
 }

@@ -235,7 +235,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   const Eigen::Isometry3d predicted_T_c_w = velocity_ * last_.T_c_w;
   if (!lost_) {
     AddTemporaryPointsToLastFrame();
-    if (have_velocity_) ok = TrackWithMotionModel();
+    if (have_velocity_) ok = TrackWithMotionModel(predicted_T_c_w);
     if (!ok) ok = TrackReferenceKeyFrame();
   }
   int inliers = 0;
@@ -255,7 +255,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
         r.prior_err_deg = Eigen::AngleAxisd(miss.rotation()).angle() * 180.0 / M_PI;
         r.prior_err_mm = 1e3 * (cur_.T_c_w.inverse().translation() - predicted_T_c_w.inverse().translation()).norm();
       }
-      MeasurePriorMiss(predicted && r.external_prior, predicted_T_c_w);
+      if (predicted && r.external_prior) MeasurePriorMiss(predicted_T_c_w);
       velocity_ = cur_.T_c_w * last_.T_c_w.inverse();
       have_velocity_ = true;
     }
@@ -359,7 +359,7 @@ void Tracker::DropTemporaryPoints(Frame* f) const {
   }
 }
 
-void Tracker::MeasurePriorMiss(bool external, const Eigen::Isometry3d& predicted_T_c_w) {
+void Tracker::MeasurePriorMiss(const Eigen::Isometry3d& predicted_T_c_w) {
   // Over the inliers of the frame just tracked: their depth, and how far the prediction put them
   // from where the tracked pose does (px).
   std::vector<double> depth, miss;
@@ -375,22 +375,21 @@ void Tracker::MeasurePriorMiss(bool external, const Eigen::Isometry3d& predicted
   if (depth.empty()) return;
   std::nth_element(depth.begin(), depth.begin() + depth.size() / 2, depth.end());
   median_depth_m_ = depth[depth.size() / 2];
-  if (!external) return;
   const size_t k = std::min(miss.size() - 1, static_cast<size_t>(0.9 * miss.size()));
   std::nth_element(miss.begin(), miss.begin() + k, miss.end());
   prior_miss_px_.push_back(miss[k]);
   while (static_cast<int>(prior_miss_px_.size()) > settings_.tracking.prior_window_frames) prior_miss_px_.pop_front();
 }
 
-bool Tracker::TrackWithMotionModel() {
-  // The constant-velocity prediction (or the external prior) with the first window (search_px_);
-  // when that matches weakly, a window three times as wide, the last pose (no motion) with five times the window, and the reference
-  // keyframe by descriptor; the attempt with the most inliers wins. A trotting robot's camera
+bool Tracker::TrackWithMotionModel(const Eigen::Isometry3d& predicted) {
+  // The prediction (constant velocity, or the external prior) with the first window (search_px_);
+  // when that matches weakly, a window three times as wide, the last pose (no motion) with five
+  // times the window, and the reference keyframe by descriptor; the attempt with the most
+  // inliers wins. A trotting robot's camera
   // turns 4 degrees a frame and, on a jolt, 10 (60 px here): the prediction can miss by more
   // than the normal window.
   const double radius = search_px_;
   const int good = static_cast<int>(settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers);
-  const Eigen::Isometry3d predicted = velocity_ * last_.T_c_w;
   const std::pair<Eigen::Isometry3d, double> attempts[] = {
       {predicted, radius}, {predicted, 3 * radius}, {last_.T_c_w, 5 * radius}};
   int best = -1;

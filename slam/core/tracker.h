@@ -80,10 +80,10 @@ class Tracker {
   void RecordFates();  // fills last_fates_ from last_ at the end of Track()
   bool Initialise();
   void AddTemporaryPointsToLastFrame();
-  bool TrackWithMotionModel();
-  // After a frame tracked from a prediction: the median depth of its inliers, and (external: the
-  // prediction was an external prior) the 90th percentile of the prediction's miss in pixels.
-  void MeasurePriorMiss(bool external, const Eigen::Isometry3d& predicted_T_c_w);
+  bool TrackWithMotionModel(const Eigen::Isometry3d& predicted);  // predicted: T_c_w from velocity_
+  // After a frame tracked from an external prior: the median depth of its inliers and the 90th
+  // percentile of the prior's miss in pixels (prior_miss_px_).
+  void MeasurePriorMiss(const Eigen::Isometry3d& predicted_T_c_w);
   bool TrackReferenceKeyFrame();
   int TrackLocalMap();
   bool Relocalise();
@@ -112,7 +112,7 @@ class Tracker {
   double prior_sigma_m_ = 0;     // its translation's standard deviation (m)
   // The first search window for this frame (px, level 0), and what sizes it with an external
   // prior: the prior's recent misses (each frame's 90th percentile, px) and the median depth of
-  // the last tracked frame's points (m).
+  // the last frame tracked from one (m).
   double search_px_ = 0;
   std::deque<double> prior_miss_px_;
   double median_depth_m_ = 0;

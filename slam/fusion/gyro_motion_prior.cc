@@ -1,7 +1,6 @@
 #include "slam/fusion/gyro_motion_prior.h"
 
 #include <cmath>
-#include <stdexcept>
 
 namespace viqu::slam {
 
@@ -9,34 +8,21 @@ GyroMotionPrior::GyroMotionPrior(const lo::AttitudeFilterOptions& options, const
     : options_(options), attitude_(options), T_imu_cam_(T_imu_cam) {}
 
 void GyroMotionPrior::AddImu(const ImuSample& s) {
-  if (last_sample_ns_ && s.t_ns <= *last_sample_ns_) {
-    throw std::invalid_argument("GyroMotionPrior: IMU samples must come in increasing time");
-  }
-  if (!started_) {
+  if (!attitude_.started()) {
     // Started levelled (the measured specific force turned to +z) by the first sample that reads
     // about g: a recording may begin in free fall or with a jolt (viqu's first sample reads 0),
     // and a start tilted by that would be pulled back by the gravity correction only over
     // seconds, turning every frame's prior meanwhile.
     if (std::abs(s.accel_i.norm() - options_.gravity_mps2) > options_.gravity_gate_mps2) return;
     attitude_.Reset(s.t_ns, Eigen::Quaterniond::FromTwoVectors(s.accel_i, Eigen::Vector3d::UnitZ()));
-    started_ = true;
   }
   attitude_.Add(s);
-  last_sample_ns_ = s.t_ns;
-}
-
-Eigen::Quaterniond GyroMotionPrior::OrientationAt(int64_t t_ns) const {
-  const double dt = last_sample_ns_ ? (t_ns - *last_sample_ns_) * 1e-9 : 0.0;
-  const Eigen::Vector3d w = attitude_.angular_velocity();
-  const double angle = w.norm() * dt;
-  if (angle == 0) return attitude_.q_w_b();
-  return (attitude_.q_w_b() * Eigen::Quaterniond(Eigen::AngleAxisd(angle, w.normalized()))).normalized();
 }
 
 std::optional<Eigen::Isometry3d> GyroMotionPrior::Prior(int64_t t_ns) const {
   if (!T_w_imu_last_ || !oriented_at_frame_) return std::nullopt;
   // The IMU's rotation from the last frame to this one, in the IMU frame of the last frame.
-  const Eigen::Matrix3d dR = (q_at_frame_.conjugate() * OrientationAt(t_ns)).toRotationMatrix();
+  const Eigen::Matrix3d dR = (q_at_frame_.conjugate() * attitude_.OrientationAt(t_ns)).toRotationMatrix();
   Eigen::Isometry3d T_w_imu = Eigen::Isometry3d::Identity();
   T_w_imu.linear() = T_w_imu_last_->linear() * dR;
   Eigen::Vector3d step = Eigen::Vector3d::Zero();
@@ -53,8 +39,8 @@ std::optional<Eigen::Isometry3d> GyroMotionPrior::Prior(int64_t t_ns) const {
 std::optional<Eigen::Isometry3d> GyroMotionPrior::NextFrame(int64_t t_ns) {
   const std::optional<Eigen::Isometry3d> prior = Prior(t_ns);
   if (prior) ++priors_given_;
-  q_at_frame_ = OrientationAt(t_ns);
-  oriented_at_frame_ = started_;
+  q_at_frame_ = attitude_.OrientationAt(t_ns);
+  oriented_at_frame_ = attitude_.started();
   return prior;
 }
 

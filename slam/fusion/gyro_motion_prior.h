@@ -25,7 +25,7 @@ class GyroMotionPrior {
   // T_imu_cam: the frames' (left, rectified) camera in the IMU frame.
   GyroMotionPrior(const lo::AttitudeFilterOptions& options, const Eigen::Isometry3d& T_imu_cam);
 
-  // IMU samples in time order (std::invalid_argument otherwise). The first one that reads about
+  // IMU samples in time order (AttitudeFilter::Add throws otherwise). The first one that reads about
   // g (within gravity_gate_mps2) starts the attitude filter levelled by it; earlier ones are
   // ignored. The world's yaw is arbitrary: only changes of orientation are used.
   void AddImu(const ImuSample& s);
@@ -42,14 +42,9 @@ class GyroMotionPrior {
   int priors_given() const { return priors_given_; }
 
  private:
-  // The filter's orientation of the IMU at t_ns (extrapolated from the last sample).
-  Eigen::Quaterniond OrientationAt(int64_t t_ns) const;
-
   lo::AttitudeFilterOptions options_;
-  lo::AttitudeFilter attitude_;
-  bool started_ = false;
+  lo::AttitudeFilter attitude_;  // started (Reset) by the first sample that reads about g
   Eigen::Isometry3d T_imu_cam_;
-  std::optional<int64_t> last_sample_ns_;
   // At the last frame: the filter's orientation and the frame's time; the IMU poses from vision
   // of the last two frames (the older one only when both had one).
   Eigen::Quaterniond q_at_frame_ = Eigen::Quaterniond::Identity();

@@ -13,7 +13,8 @@ void VisualLegFusion::BeforeTrack(SlamSystem* system) {
     // The translation's uncertainty over the interval: the filter's velocity uncertainty (its
     // largest axis) times the time since the last frame.
     const Eigen::Matrix3d P_vv = lo_->filter().covariance().block<3, 3>(3, 3);
-    const double sigma_v = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P_vv).eigenvalues().maxCoeff()));
+    const double var_v = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P_vv).eigenvalues().maxCoeff();
+    const double sigma_v = std::sqrt(std::max(0.0, var_v));
     system->SetMotionPrior(T_w_c.inverse() * *last_T_w_c_, sigma_v * (lo_->t_ns() - last_t_ns_) * 1e-9);
   }
   last_T_w_c_ = T_w_c;

@@ -25,6 +25,11 @@ void AttitudeFilter::Reset(int64_t t_ns, const Eigen::Quaterniond& q_w_b, const 
   corrected_ = false;
 }
 
+Eigen::Quaterniond AttitudeFilter::OrientationAt(int64_t t_ns) const {
+  if (!last_t_ns_) return q_w_b_;
+  return (q_w_b_ * Exp(angular_velocity() * ((t_ns - *last_t_ns_) * 1e-9))).normalized();
+}
+
 void AttitudeFilter::Add(const ImuSample& s) {
   if (last_t_ns_ && s.t_ns < *last_t_ns_) throw std::invalid_argument("IMU time went backwards");
   const double dt = last_t_ns_ ? (s.t_ns - *last_t_ns_) * 1e-9 : 0.0;

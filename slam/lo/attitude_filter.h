@@ -39,6 +39,9 @@ class AttitudeFilter {
   void SetOrientation(const Eigen::Quaterniond& q_w_b) { q_w_b_ = q_w_b.normalized(); }
 
   const Eigen::Quaterniond& q_w_b() const { return q_w_b_; }
+  // The orientation at t_ns, extrapolated from the last sample with its bias-corrected rate.
+  Eigen::Quaterniond OrientationAt(int64_t t_ns) const;
+  bool started() const { return last_t_ns_.has_value(); }  // Reset has been called
   const Eigen::Vector3d& gyro_bias() const { return bias_; }           // (rad/s)
   Eigen::Vector3d angular_velocity() const { return last_gyro_ - bias_; }  // bias-corrected (rad/s, body)
   bool corrected_last() const { return corrected_; }  // the last sample passed the gravity gate
