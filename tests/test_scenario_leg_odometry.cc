@@ -54,20 +54,27 @@ int Lines(const fs::path& p) {
 TEST(LegOdometryScenario, CameraDropoutIsCarriedByTheFilter) {
   const RunOutput full = RunScenario("camera_dropout.yaml", "dropout_full", {});
   const RunOutput visual = RunScenario("camera_dropout.yaml", "dropout_visual", {"slam.mode=visual"});
+  const RunOutput seen = RunScenario("camera_dropout.yaml", "dropout_none", {"sensors.camera.dropouts=[]"});
   const double ate_full = full.metrics["ate"]["rmse_m"].as<double>();
   const double ate_visual = visual.metrics["ate"]["rmse_m"].as<double>();
+  const double ate_seen = seen.metrics["ate"]["rmse_m"].as<double>();
   const int frames = full.metrics["tracking"]["frames"].as<int>();
-  std::printf("camera_dropout: ATE full %.4f m, visual %.4f m (%.3fx); lost %d / %d frames; LO alone %.4f m, "
-              "drift %.2f%%\n",
-              ate_full, ate_visual, ate_full / ate_visual, full.metrics["tracking"]["lost_frames"].as<int>(), frames,
-              full.metrics["lo"]["ate"]["rmse_m"].as<double>(), full.metrics["lo"]["drift_pct_path"].as<double>());
+  std::printf("camera_dropout: ATE full %.4f m, visual %.4f m (%.3fx), full without the dropout %.4f m (%.2fx); lost "
+              "%d / %d frames; LO alone %.4f m, drift %.2f%%\n",
+              ate_full, ate_visual, ate_full / ate_visual, ate_seen, ate_full / ate_seen,
+              full.metrics["tracking"]["lost_frames"].as<int>(), frames, full.metrics["lo"]["ate"]["rmse_m"].as<double>(),
+              full.metrics["lo"]["drift_pct_path"].as<double>());
   // A pose for every frame, the 100 black frames included (no gap).
   EXPECT_EQ(Lines(full.dir / "trajectory_est.txt"), frames);
   EXPECT_EQ(Lines(full.dir / "trajectory_lo.txt"), frames);
   EXPECT_EQ(full.metrics["tracking"]["lost_frames"].as<int>(), 100);  // 14 s to 19 s at 20 Hz, no more
-  // Measured 7.8 mm (full) and 131 mm (visual).
-  EXPECT_LT(ate_full, 0.016);
+  // Measured 3.3 mm (full), 131 mm (visual) and 2.2 mm without the dropout (1.49x; the issue asks
+  // <= 2x; 6.2x while the touch-down inflation also down-weighted the vertical and the height
+  // sank 25 mm in the outage's corner turn).
+  EXPECT_LT(ate_full, 0.007);
   EXPECT_LT(ate_full, 0.2 * ate_visual);
+  EXPECT_LT(ate_full, 3.0 * ate_seen);
+  EXPECT_EQ(seen.metrics["tracking"]["lost_frames"].as<int>(), 0);
   EXPECT_FALSE(fs::exists(visual.dir / "trajectory_lo.txt"));  // no filter in mode visual
 }
 

@@ -160,7 +160,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 26 + 9 + 8 + 3 + 14 + 16;
+constexpr int kLeafKeys = 4 + 6 + 10 + 26 + 9 + 8 + 3 + 14 + 17;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();

@@ -49,11 +49,15 @@ void LegImuKf::Predict(double dt, const Eigen::Vector3d& a_w, double accel_noise
 }
 
 void LegImuKf::UpdateFootPosition(int leg, const Eigen::Vector3d& rel_w, double std_m) {
+  UpdateFootPosition(leg, rel_w, Eigen::Vector3d::Constant(std_m));
+}
+
+void LegImuKf::UpdateFootPosition(int leg, const Eigen::Vector3d& rel_w, const Eigen::Vector3d& std_m) {
   const int f = 6 + 3 * leg;
   // H = [-I 0 ... I(at foot) ...]; H P and H P H^T by blocks.
   const Eigen::Matrix<double, 3, kKfStates> HP = P_.block<3, kKfStates>(f, 0) - P_.block<3, kKfStates>(0, 0);
   Eigen::Matrix3d S = HP.block<3, 3>(0, f) - HP.block<3, 3>(0, 0);
-  S.diagonal().array() += std_m * std_m;
+  S.diagonal() += std_m.cwiseAbs2();
   const Eigen::Vector3d y = rel_w - (x_.segment<3>(f) - x_.segment<3>(0));
   const Eigen::LLT<Eigen::Matrix3d> llt(S);
   const Eigen::Matrix<double, kKfStates, 3> K = llt.solve(HP).transpose();  // P H^T S^-1 (S symmetric)
@@ -63,9 +67,13 @@ void LegImuKf::UpdateFootPosition(int leg, const Eigen::Vector3d& rel_w, double 
 }
 
 void LegImuKf::UpdateVelocity(const Eigen::Vector3d& v_w, double std_mps) {
+  UpdateVelocity(v_w, Eigen::Vector3d::Constant(std_mps));
+}
+
+void LegImuKf::UpdateVelocity(const Eigen::Vector3d& v_w, const Eigen::Vector3d& std_mps) {
   const Eigen::Matrix<double, 3, kKfStates> HP = P_.block<3, kKfStates>(3, 0);
   Eigen::Matrix3d S = HP.block<3, 3>(0, 3);
-  S.diagonal().array() += std_mps * std_mps;
+  S.diagonal() += std_mps.cwiseAbs2();
   const Eigen::Vector3d y = v_w - x_.segment<3>(3);
   const Eigen::LLT<Eigen::Matrix3d> llt(S);
   const Eigen::Matrix<double, kKfStates, 3> K = llt.solve(HP).transpose();

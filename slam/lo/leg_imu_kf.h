@@ -42,9 +42,13 @@ class LegImuKf {
   // Foot i's position relative to the body in the world frame, rel_w = f_i - p, with an isotropic
   // standard deviation (m).
   void UpdateFootPosition(int leg, const Eigen::Vector3d& rel_w, double std_m);
+  // The same with a standard deviation per world axis (m).
+  void UpdateFootPosition(int leg, const Eigen::Vector3d& rel_w, const Eigen::Vector3d& std_m);
 
   // The body velocity measured through a standing foot (m/s) with an isotropic standard deviation.
   void UpdateVelocity(const Eigen::Vector3d& v_w, double std_mps);
+  // The same with a standard deviation per world axis (m/s).
+  void UpdateVelocity(const Eigen::Vector3d& v_w, const Eigen::Vector3d& std_mps);
 
   // Squared Mahalanobis distance y^T (P_vv + std^2 I)^-1 y of a velocity innovation y (a measured
   // velocity minus the filter's, before any update with it) of isotropic standard deviation std.

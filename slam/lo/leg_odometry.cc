@@ -162,7 +162,9 @@ void LegOdometry::AddJoints(const JointState& js) {
   for (int i = 0; i < kNumLegs; ++i) {
     const FootStatus& f = feet_[i];
     const bool settling = f.contact && js.t_ns - f.touchdown_ns < touchdown_ns;
-    const double inflate = settling ? settings_.touchdown_inflation : 1.0;
+    const Eigen::Vector3d inflate = settling ? Eigen::Vector3d(settings_.touchdown_inflation, settings_.touchdown_inflation,
+                                                               settings_.touchdown_inflation_vertical)
+                                             : Eigen::Vector3d::Ones();
     kf_.UpdateFootPosition(i, rel_w[i], settings_.kin_position_noise_m * inflate);
     if (f.contact && !f.slipping && v_foot[i]) kf_.UpdateVelocity(*v_foot[i], v_std[i] * inflate);
   }

@@ -167,6 +167,7 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("velocity_window_s", &lo->velocity_window_s, NumberRange::Closed(0, 1));
   m->Number("touchdown_s", &lo->touchdown_s, NumberRange::Closed(0, 10));
   m->Number("touchdown_inflation", &lo->touchdown_inflation, NumberRange::Closed(1, 1e6));
+  m->Number("touchdown_inflation_vertical", &lo->touchdown_inflation_vertical, NumberRange::Closed(1, 1e6));
   m->Number("slip_gate_chi2", &lo->slip_gate_chi2, NumberRange::Positive());
   m->Number("slip_min_window_s", &lo->slip_min_window_s, NumberRange::Closed(0, 1));
   m->Number("contact_height_m", &lo->contact_height_m, NumberRange::Positive());
@@ -342,6 +343,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "velocity_window_s", lo.velocity_window_s);
   EmitNumber(out, "touchdown_s", lo.touchdown_s);
   EmitNumber(out, "touchdown_inflation", lo.touchdown_inflation);
+  EmitNumber(out, "touchdown_inflation_vertical", lo.touchdown_inflation_vertical);
   EmitNumber(out, "slip_gate_chi2", lo.slip_gate_chi2);
   EmitNumber(out, "slip_min_window_s", lo.slip_min_window_s);
   EmitNumber(out, "contact_height_m", lo.contact_height_m);

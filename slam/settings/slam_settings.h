@@ -120,7 +120,8 @@ struct LegOdometrySettings {
   double kin_velocity_noise_mps = 0.02;   // body velocity through a stance foot, over the window (m/s)
   double velocity_window_s = 0.02;   // that velocity is the encoder positions' change over this (s)
   double touchdown_s = 0.03;         // after touch-down a foot's measurements are inflated this long (s)
-  double touchdown_inflation = 10;   // by this factor on their standard deviation (ratio)
+  double touchdown_inflation = 10;   // by this factor on their standard deviation (ratio), horizontally
+  double touchdown_inflation_vertical = 1;  // and vertically (ratio)
   // Slip: a stance foot whose velocity innovation fails this gate is slipping for that sample.
   double slip_gate_chi2 = 16.27;     // Mahalanobis gate, chi-square 3 dof at 99.9% (1)
   double slip_min_window_s = 0.01;   // a foot is judged once it has stood this long (s)
