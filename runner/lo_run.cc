@@ -48,6 +48,13 @@ void LoRun::AddJoints(const JointState& js, int64_t period_ns, const LoTruth& tr
   }
   truth_events_.Add(js.t_ns, period_ns, true_slip, truth.sole_speed_mps);
   detected_events_.Add(js.t_ns, period_ns, detected, m2);
+  if (fused_) {
+    for (int i = 0; i < kNumLegs; ++i) {
+      detected[i] = fused_->feet()[i].slipping;
+      m2[i] = fused_->feet()[i].mahalanobis2;
+    }
+    fused_events_.Add(js.t_ns, period_ns, detected, m2);
+  }
 }
 
 void LoRun::AddFrame(int64_t t_ns) {
@@ -62,6 +69,11 @@ LoSummary LoRun::Finish(const eval::Trajectory& gt_cam, double path_length_m, Js
   LoSummary s;
   std::vector<SlipEvent> truth = truth_events_.Finish();
   std::vector<SlipEvent> detected = detected_events_.Finish();
+  if (fused_) {
+    std::vector<SlipEvent> truth_copy = truth;  // ScoreSlip marks the matches in place
+    std::vector<SlipEvent> fused = fused_events_.Finish();
+    s.slip_fused = ScoreSlip(&truth_copy, &fused, kSlipMatchToleranceS);
+  }
   s.slip = ScoreSlip(&truth, &detected, kSlipMatchToleranceS);
   WriteFileAtomic(out_dir_ + "/slip.csv", SlipCsv(truth, detected));
   s.update_ms_mean = lo_.mean_update_ms();
@@ -87,6 +99,11 @@ LoSummary LoRun::Finish(const eval::Trajectory& gt_cam, double path_length_m, Js
   json->Set("slip.recall", s.slip.recall);
   json->Set("slip.events", s.slip.detected_events);
   json->Set("slip.truth_events", s.slip.truth_events);
+  if (s.slip_fused) {
+    json->Set("slip.fused.precision", s.slip_fused->precision);
+    json->Set("slip.fused.recall", s.slip_fused->recall);
+    json->Set("slip.fused.events", s.slip_fused->detected_events);
+  }
   return s;
 }
 
@@ -97,7 +114,13 @@ std::string LoSummaryLine(const LoSummary& s) {
                 "(%d true events, %d detected); %.3f ms per IMU+encoder sample",
                 s.ate_rmse_m, s.drift_pct_path, s.yaw_drift_deg, s.slip.precision, s.slip.recall, s.slip.truth_events,
                 s.slip.detected_events, s.update_ms_mean);
-  return buf;
+  std::string line = buf;
+  if (s.slip_fused) {
+    std::snprintf(buf, sizeof buf, "; fused with vision: slip precision %.2f recall %.2f (%d detected)",
+                  s.slip_fused->precision, s.slip_fused->recall, s.slip_fused->detected_events);
+    line += buf;
+  }
+  return line;
 }
 
 }  // namespace viqu::runner

@@ -6,6 +6,7 @@
 // slip flag and gate statistic) and adds the lo.* and slip.* keys to metrics.json.
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "runner/slip_score.h"
@@ -29,6 +30,7 @@ struct LoTruth {
 struct LoSummary {
   double ate_rmse_m = 0, drift_pct_path = 0, yaw_drift_deg = 0;
   SlipScore slip;
+  std::optional<SlipScore> slip_fused;  // the fused filter's decisions (mode full)
   double update_ms_mean = 0;
 };
 
@@ -37,6 +39,10 @@ class LoRun {
   // Anchored at the true first trunk pose at t0_ns (as the SLAM map is at the first camera pose).
   LoRun(const slam::LegOdometrySettings& settings, const kin::LegKinematics& kin, const std::string& out_dir,
         int64_t t0_ns, const Eigen::Isometry3d& T_w_body0, const Eigen::Isometry3d& T_body_cam);
+
+  // The filter fused with vision (mode full), whose slip decisions are scored too (slip.fused.*):
+  // it must have taken each encoder reading before AddJoints() is called with it.
+  void SetFused(const lo::LegOdometry* fused) { fused_ = fused; }
 
   void AddImu(const ImuSample& s) { lo_.AddImu(s); }
   void AddContact(const ContactReading& c) { lo_.AddContact(c); }
@@ -58,6 +64,8 @@ class LoRun {
   eval::Trajectory est_;
   SlipEventBuilder truth_events_{kSlipMinDurationS};
   SlipEventBuilder detected_events_{0.0};
+  const lo::LegOdometry* fused_ = nullptr;
+  SlipEventBuilder fused_events_{0.0};
 };
 
 // "LO: ATE 0.0123 m, drift 1.23% of path, yaw drift 2.1 deg; slip precision 0.90 recall 0.85 (20 true, 19 detected)"

@@ -180,6 +180,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
     lo = std::make_unique<LoRun>(settings->lo, rig.kinematics(), out, world.time_ns(), T_w_b0, world.T_body_cam(false));
     fused_lo = std::make_unique<lo::LegOdometry>(settings->lo, rig.kinematics());
     fused_lo->Start(world.time_ns(), T_w_b0);
+    lo->SetFused(fused_lo.get());
     fusion = std::make_unique<slam::VisualLegFusion>(fused_lo.get(), world.T_body_cam(false), settings->lo.fusion_min_inliers);
     slam->SetFusion(fusion.get());
   }
