@@ -193,6 +193,21 @@ TEST(AttitudeFilter, NoCorrectionFromAJolt) {
   EXPECT_FALSE(f.corrected_last());
 }
 
+// Foot `leg` at `foot` (trunk frame) as encoder readings into *js: the inverse kinematics with
+// 1 mrad of noise from *n, and rates as the finite difference from last_q over 5 ms (0 at the
+// first sample).
+void EncodeFoot(const kin::LegKinematics& kin, int leg, const Eigen::Vector3d& foot, bool first,
+                const std::array<double, kNumJoints>& last_q, std::mt19937_64* rng, std::normal_distribution<double>* n,
+                JointState* js) {
+  double q1, q2;
+  EXPECT_TRUE(kin.Inverse(static_cast<Leg>(leg), foot, &q1, &q2));
+  js->position_rad[2 * leg] = q1 + 0.001 * (*n)(*rng);
+  js->position_rad[2 * leg + 1] = q2 + 0.001 * (*n)(*rng);
+  for (int j = 0; j < 2; ++j) {
+    js->velocity_rad_s[2 * leg + j] = first ? 0.0 : (js->position_rad[2 * leg + j] - last_q[2 * leg + j]) / 0.005;
+  }
+}
+
 // A synthetic robot standing still on the URDF's legs: level trunk 0.075 m up, feet on the floor.
 class SyntheticStance : public ::testing::Test {
  protected:
@@ -234,15 +249,7 @@ class SyntheticStance : public ::testing::Test {
       lo->AddContact(ContactReading{t, {true, true, true, true}});
       JointState js;
       js.t_ns = t;
-      for (int i = 0; i < kNumLegs; ++i) {
-        double q1, q2;
-        EXPECT_TRUE(kin_.Inverse(static_cast<Leg>(i), feet[i], &q1, &q2));
-        js.position_rad[2 * i] = q1 + 0.001 * n(rng);
-        js.position_rad[2 * i + 1] = q2 + 0.001 * n(rng);
-        for (int j = 0; j < 2; ++j) {
-          js.velocity_rad_s[2 * i + j] = k == 0 ? 0.0 : (js.position_rad[2 * i + j] - last_q[2 * i + j]) / 0.005;
-        }
-      }
+      for (int i = 0; i < kNumLegs; ++i) EncodeFoot(kin_, i, feet[i], k == 0, last_q, &rng, &n, &js);
       last_q = js.position_rad;
       lo->AddJoints(js);
       if (vision && k % 10 == 0) lo->CorrectPose(T);
@@ -368,13 +375,7 @@ double TrotInPlaceOnSoftFloor(const kin::LegKinematics& kin, const std::array<Ei
       } else {
         f.z() += 0.010 * std::sin(M_PI * in_stance_ms / 200.0);
       }
-      double q1, q2;
-      EXPECT_TRUE(kin.Inverse(static_cast<Leg>(i), f, &q1, &q2));
-      js.position_rad[2 * i] = q1 + 0.001 * n(rng);
-      js.position_rad[2 * i + 1] = q2 + 0.001 * n(rng);
-      for (int j = 0; j < 2; ++j) {
-        js.velocity_rad_s[2 * i + j] = k == 0 ? 0.0 : (js.position_rad[2 * i + j] - last_q[2 * i + j]) / 0.005;
-      }
+      EncodeFoot(kin, i, f, k == 0, last_q, &rng, &n, &js);
     }
     last_q = js.position_rad;
     lo->AddContact(c);
