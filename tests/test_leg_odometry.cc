@@ -221,8 +221,8 @@ class SyntheticStance : public ::testing::Test {
 
   // Runs `seconds` with foot `slip_leg` (-1: none, kNumLegs: all) sliding backwards along the
   // floor at `slip_mps` from t = 1 s on, while the schedule reports all four feet in stance.
-  // `vision`: every 50 ms the true pose corrects the filter (slam.mode full). Returns the estimator's body
-  // position error (m) and counts the samples flagged slipping per foot.
+  // `vision`: every 50 ms the true pose corrects the filter (slam.mode full). Returns the
+  // estimator's body position error (m) and counts the samples flagged slipping per foot.
   double Run(lo::LegOdometry* lo, double seconds, int slip_leg, double slip_mps, std::array<int, kNumLegs>* flagged,
              bool vision = false) {
     const Eigen::Isometry3d T = Eigen::Translation3d(0, 0, 0.075) * Eigen::Isometry3d::Identity();
@@ -396,9 +396,7 @@ TEST_F(SyntheticStance, SoftFloorHeightDriftFollowsTheWeightedEndOfTheStance) {
   s.touchdown_inflation_vertical = s.touchdown_inflation;
   lo::LegOdometry both(s, kin_);
   const double dz_both = TrotInPlaceOnSoftFloor(kin_, feet_body_, &both, 20);
-  s.touchdown_inflation_vertical = 1;
-  s.touchdown_inflation = 1;
-  lo::LegOdometry rigid_floor(s, kin_);
+  lo::LegOdometry rigid_floor(slam::LegOdometrySettings{}, kin_);
   const double dz_rigid = TrotInPlaceOnSoftFloor(kin_, feet_body_, &rigid_floor, 20, 0.0);
   std::printf("trot in place 20 s on a 1 mm soft floor: height error %.2f mm (touch-down inflated vertically too: "
               "%.2f mm; rigid floor %.2f mm)\n", dz * 1e3, dz_both * 1e3, dz_rigid * 1e3);
