@@ -163,11 +163,12 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   const bool steer_by_estimate = s.robot.command.follow == "estimate";
   if (steer_by_estimate) metrics.steer_source = "estimate";
   // The map is anchored at the true first camera pose, so that the estimate and the ground
-  // truth share a frame (ATE aligns them anyway).
+  // truth share a frame (ATE aligns them anyway), as the run's files print it (9 decimals), so
+  // that a replay, which reads the anchor from those files, starts from the same numbers.
   std::unique_ptr<SlamRun> slam;
   if (opt.slam) {
     WriteFileAtomic(out + "/slam_settings.yaml", slam::SlamSettingsToYaml(*settings));
-    const Eigen::Isometry3d T_w_c0 = ToIsometry(world.GroundTruth().T_w_cam);
+    const Eigen::Isometry3d T_w_c0 = ToIsometry(sim::AsReadBack(world.GroundTruth().T_w_cam));
     slam = std::make_unique<SlamRun>(*settings, out, T_w_c0);
   }
   // Leg odometry + IMU (mode full), anchored at the true first trunk pose likewise: one filter
@@ -176,7 +177,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   std::unique_ptr<lo::LegOdometry> fused_lo;
   std::unique_ptr<slam::VisualLegFusion> fusion;
   if (opt.slam && settings->mode == "full") {
-    const Eigen::Isometry3d T_w_b0 = ToIsometry(world.GroundTruth().T_w_body);
+    const Eigen::Isometry3d T_w_b0 = ToIsometry(sim::AsReadBack(world.GroundTruth().T_w_body));
     lo = std::make_unique<LoRun>(settings->lo, rig.kinematics(), out, world.time_ns(), T_w_b0, world.T_body_cam(false));
     fused_lo = std::make_unique<lo::LegOdometry>(settings->lo, rig.kinematics());
     fused_lo->Start(world.time_ns(), T_w_b0);

@@ -59,7 +59,7 @@ std::string TransformYaml(const Eigen::Isometry3d& T_B_S) {
   std::string s = "T_BS:\n  cols: 4\n  rows: 4\n  data: [";
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) {
-      s += Fmt("%.12g", m(r, c));
+      s += Exact(m(r, c));
       if (r < 3 || c < 3) s += c == 3 ? ",\n         " : ", ";
     }
   }
@@ -75,8 +75,9 @@ std::string CameraYaml(const std::string& comment, const Eigen::Isometry3d& T_B_
   s += "rate_hz: " + Fmt("%.9g", rig.camera.rate_hz) + "\n";
   s += "resolution: [" + std::to_string(k.width) + ", " + std::to_string(k.height) + "]\n";
   s += "camera_model: pinhole\n";
-  s += "intrinsics: [" + Fmt("%.12g", k.fx) + ", " + Fmt("%.12g", k.fy) + ", " + Fmt("%.12g", k.cx) +
-       ", " + Fmt("%.12g", k.cy) + "]  # fu, fv, cu, cv\n";
+  // Exact digits: a replay must project with the very intrinsics and extrinsics of the live run.
+  s += "intrinsics: [" + Exact(k.fx) + ", " + Exact(k.fy) + ", " + Exact(k.cx) + ", " + Exact(k.cy) +
+       "]  # fu, fv, cu, cv\n";
   s += "distortion_model: radial-tangential\n";
   s += "distortion_coefficients: [0, 0, 0, 0]\n";
   return s + extra;

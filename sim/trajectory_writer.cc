@@ -2,6 +2,7 @@
 
 #include <cinttypes>
 #include <cstdio>
+#include <cstdlib>
 
 namespace viqu::sim {
 namespace {
@@ -15,7 +16,20 @@ std::string Field(double v) {
   return s;
 }
 
+double RoundedAsWritten(double v) { return std::strtod(Field(v).c_str(), nullptr); }
+
 }  // namespace
+
+StampedPose AsReadBack(const StampedPose& pose) {
+  Eigen::Quaterniond q = pose.q_w_x.normalized();
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
+  StampedPose out = pose;
+  for (int i = 0; i < 3; ++i) out.p_w_x[i] = RoundedAsWritten(pose.p_w_x[i]);
+  out.q_w_x = Eigen::Quaterniond(RoundedAsWritten(q.w()), RoundedAsWritten(q.x()), RoundedAsWritten(q.y()),
+                                 RoundedAsWritten(q.z()))
+                  .normalized();
+  return out;
+}
 
 std::string FormatSeconds(int64_t t_ns) {
   const bool negative = t_ns < 0;

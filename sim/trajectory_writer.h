@@ -34,6 +34,12 @@ class TrajectoryWriter {
   size_t lines_ = 0;                        // poses written
 };
 
+// `pose` as a reader gets it back from this writer's file (and from a recording's EuRoC ground
+// truth, which prints the same 9 decimals): each number rounded as written and read back, the
+// quaternion normalised as the readers do. A live run anchors its estimators at this pose so that
+// a replay of its recording, anchored at the pose read from the file, starts from the same bits.
+StampedPose AsReadBack(const StampedPose& pose);
+
 // "12.345678901" from 12345678901 ns (exact, also for negative stamps).
 std::string FormatSeconds(int64_t t_ns);
 

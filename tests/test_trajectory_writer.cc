@@ -3,11 +3,14 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+#include <cmath>
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
 #include "sim/trajectory_writer.h"
+#include "slam/eval/trajectory.h"
 #include "read_all.h"
 
 namespace viqu::sim {
@@ -60,6 +63,42 @@ TEST(TrajectoryWriter, WritesTumLinesAndRenamesOnClose) {
   size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
   EXPECT_EQ(files, 1u) << "no temporary file may be left behind";
+  fs::remove_all(dir);
+}
+
+// A live run anchors its estimators at AsReadBack(truth) so that a replay, anchored at the pose
+// read from the file, starts from the same bits: for poses with no short decimal form (and a
+// quaternion with qw < 0), what the reader returns is AsReadBack's pose exactly.
+TEST(TrajectoryWriter, AsReadBackIsExactlyWhatTheReaderGets) {
+  const fs::path dir = TempDir();
+  const fs::path path = dir / "trajectory_gt.txt";
+  std::vector<StampedPose> poses;
+  for (int i = 0; i < 20; ++i) {
+    StampedPose p;
+    p.t_ns = 1000000000LL * (i + 1);
+    p.p_w_x = Eigen::Vector3d(1.0 / (i + 3) + 1.0 / 30000, -std::sqrt(2.0 + i), 0.07 + i / 7.0);
+    p.q_w_x = Eigen::Quaterniond(Eigen::AngleAxisd(0.1 + 0.37 * i, Eigen::Vector3d(1, i, 3).normalized()));
+    if (i % 2) p.q_w_x.coeffs() = -p.q_w_x.coeffs();
+    poses.push_back(p);
+  }
+  {
+    TrajectoryWriter w(path.string());
+    for (const StampedPose& p : poses) w.Add(p);
+    w.Close();
+  }
+  const std::vector<StampedPose> read = eval::ReadTumTrajectory(path.string());
+  ASSERT_EQ(read.size(), poses.size());
+  int differs_from_truth = 0;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const StampedPose a = AsReadBack(poses[i]);
+    EXPECT_EQ(a.t_ns, read[i].t_ns);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(a.p_w_x[k], read[i].p_w_x[k]) << "pose " << i << " axis " << k;
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(a.q_w_x.coeffs()[k], read[i].q_w_x.coeffs()[k]) << "pose " << i << " q " << k;
+    differs_from_truth += a.p_w_x != poses[i].p_w_x;
+    EXPECT_LT((a.p_w_x - poses[i].p_w_x).norm(), 1e-9);
+    EXPECT_LT(a.q_w_x.angularDistance(poses[i].q_w_x), 1e-8);
+  }
+  EXPECT_EQ(differs_from_truth, 20) << "these positions have no 9-decimal form: the rounding must show";
   fs::remove_all(dir);
 }
 
