@@ -7,10 +7,6 @@
 
 #include "slam/core/camera.h"
 
-namespace ceres {
-class CostFunction;
-}
-
 namespace viqu::slam {
 
 class KeyFrame;
@@ -30,11 +26,6 @@ struct LocalBaResult {
 
 // Runs local BA around `kf`. Takes `map_mutex` (the Map's) while reading and writing the map and
 // releases it while solving, so tracking can go on in real-time mode.
-// The residual local BA minimises for one observation (parameters: angle-axis + translation of
-// T_c_w, then the point in the world), with Jacobians written out: u, v in pixels of the level
-// times `w` (1 / level scale), and the right image's u when `ur` >= 0. The caller owns it.
-ceres::CostFunction* MakeBaReprojectionCost(const StereoCamera& cam, double u, double v, double ur, double w);
-
 LocalBaResult LocalBundleAdjustment(const StereoCamera& cam, const LocalBaOptions& opt, KeyFrame* kf,
                                     std::mutex* map_mutex);
 

@@ -1,7 +1,8 @@
 #pragma once
-// Ceres residuals of one observation of a map point, shared by pose-only optimisation and local
-// bundle adjustment. Included only by the optimiser .cc files (Ceres templates stay out of
-// widely included headers). The pose block is T_c_w as [angle-axis (3), translation (3)];
+// Ceres residuals of one observation of a map point: what pose-only optimisation and local BA
+// minimised through Ceres before they were written out (slam/core/pose_optimizer.cc,
+// ba_solver.cc), kept as the independent reference of their tests. The pose block is T_c_w as
+// [angle-axis (3), translation (3)];
 // residuals are pixel errors divided by the feature's level scale (the information of an
 // observation at level l is 1 / scale^(2 l), as ORB-SLAM weights them).
 #include <ceres/ceres.h>
