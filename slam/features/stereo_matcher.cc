@@ -17,16 +17,39 @@ int Hamming(const cv::Mat& a, int ra, const cv::Mat& b, int rb) {
   return HammingDistance(a.ptr<uint8_t>(ra), b.ptr<uint8_t>(rb), a.cols);
 }
 
-// SAD between a (2h+1)^2 patch of `l` centred at (xl, y) and of `r` centred at (xr, y); integer
-// sums (exact), which the compiler vectorises.
-double Sad(const cv::Mat& l, const cv::Mat& r, int xl, int xr, int y, int h) {
-  int s = 0;
+// SADs between the (2h+1)^2 patch of `l` centred at (xl, y) and the patches of `r` centred at
+// (x0 + k, y), k = 0 .. n-1, into sad[k]. Integer sums (exact, in any order). For a long run of
+// columns (a search without a descriptor match, up to the whole disparity range) the loop runs
+// over the columns innermost, contiguous in `r`, which the compiler vectorises (one left pixel
+// against n right pixels) instead of an 11-pixel patch row per column.
+void SadRow(const cv::Mat& l, const cv::Mat& r, int xl, int x0, int y, int h, int n, std::vector<int>* acc,
+            std::vector<double>* sad) {
+  sad->resize(n);
+  if (n < 16) {
+    // A few columns (around a descriptor match): one column at a time, its sum in a register.
+    for (int k = 0; k < n; ++k) {
+      int sum = 0;
+      for (int dy = -h; dy <= h; ++dy) {
+        const uchar* pl = l.ptr<uchar>(y + dy) + xl;
+        const uchar* pr = r.ptr<uchar>(y + dy) + x0 + k;
+        for (int dx = -h; dx <= h; ++dx) sum += std::abs(int(pl[dx]) - int(pr[dx]));
+      }
+      (*sad)[k] = sum;
+    }
+    return;
+  }
+  acc->assign(n, 0);
+  int* a = acc->data();
   for (int dy = -h; dy <= h; ++dy) {
     const uchar* pl = l.ptr<uchar>(y + dy) + xl;
-    const uchar* pr = r.ptr<uchar>(y + dy) + xr;
-    for (int dx = -h; dx <= h; ++dx) s += std::abs(int(pl[dx]) - int(pr[dx]));
+    const uchar* pr = r.ptr<uchar>(y + dy) + x0;
+    for (int dx = -h; dx <= h; ++dx) {
+      const int lv = pl[dx];
+      const uchar* q = pr + dx;
+      for (int k = 0; k < n; ++k) a[k] += std::abs(lv - int(q[k]));
+    }
   }
-  return s;
+  for (int k = 0; k < n; ++k) (*sad)[k] = a[k];
 }
 
 }  // namespace
@@ -59,6 +82,8 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
   };
 
   std::vector<double> best_sad(left_kps.size(), -1);  // SAD at the refined match, -1 if none
+  std::vector<int> acc;
+  std::vector<double> sad;
   for (size_t i = 0; i < left_kps.size(); ++i) {
     const cv::KeyPoint& kl = left_kps[i];
     const int row = cvRound(kl.pt.y);
@@ -104,8 +129,7 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
     lo = std::max(lo, h + 1);
     hi = std::min(hi, R.cols - h - 2);
     if (hi < lo) continue;
-    std::vector<double> sad(hi - lo + 3);  // columns lo-1 .. hi+1
-    for (int x = lo - 1; x <= hi + 1; ++x) sad[x - lo + 1] = Sad(L, R, xl, x, yl, h);
+    SadRow(L, R, xl, lo - 1, yl, h, hi - lo + 3, &acc, &sad);  // columns lo-1 .. hi+1
     const int arg = static_cast<int>(std::min_element(sad.begin() + 1, sad.end() - 1) - sad.begin());
     if (!by_descriptor) {
       // Accept a search without a descriptor only if its minimum is unique along the row.
