@@ -15,20 +15,10 @@
 #include "slam/core/ba_solver.h"
 #include "ceres_reprojection_cost.h"
 #include "random_vector.h"
+#include "synthetic_camera.h"
 
 namespace viqu::slam {
 namespace {
-
-StereoCamera Camera() {
-  StereoCamera c;
-  c.width = 640;
-  c.height = 480;
-  c.fx = c.fy = 400;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.bf = 400 * 0.04;
-  return c;
-}
 
 struct Scene {
   BaProblem truth;    // true poses and points
@@ -42,7 +32,7 @@ struct Scene {
 // every other point. The first `held` keyframes are held; the others start 2 cm / 0.5 deg off
 // and the points 3 cm off.
 Scene MakeScene(int keyframes, int held, int n, double noise_px, bool outliers, unsigned seed) {
-  const StereoCamera cam = Camera();
+  const StereoCamera cam = testing::SyntheticStereoCamera();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(0, 1);
   std::normal_distribution<double> N(0, noise_px);
@@ -143,7 +133,7 @@ double PoseError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
 }
 
 TEST(BaSolver, ReachesTheMinimumCeresReaches) {
-  const StereoCamera cam = Camera();
+  const StereoCamera cam = testing::SyntheticStereoCamera();
   for (bool outliers : {false, true}) {
     const Scene s = MakeScene(8, 2, 400, 0.7, outliers, 5);
     BaSolverOptions opt;
@@ -173,7 +163,7 @@ TEST(BaSolver, ReachesTheMinimumCeresReaches) {
 }
 
 TEST(BaSolver, RecoversThePosesWithOutliersAndHoldsTheHeldOnes) {
-  const StereoCamera cam = Camera();
+  const StereoCamera cam = testing::SyntheticStereoCamera();
   const Scene s = MakeScene(10, 3, 600, 0.5, true, 9);
   ASSERT_GT(s.outliers.size(), 20u);
   BaProblem p = s.problem;
@@ -205,7 +195,7 @@ TEST(BaSolver, RecoversThePosesWithOutliersAndHoldsTheHeldOnes) {
 }
 
 TEST(BaSolver, MonocularOnlyObservationsConverge) {
-  const StereoCamera cam = Camera();
+  const StereoCamera cam = testing::SyntheticStereoCamera();
   Scene s = MakeScene(8, 2, 400, 0.5, false, 3);
   for (BaObservation& o : s.problem.observations) o.ur = -1;
   BaProblem ours = s.problem, theirs = s.problem;

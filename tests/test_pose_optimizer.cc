@@ -10,20 +10,10 @@
 #include "slam/core/map.h"
 #include "slam/core/pose_optimizer.h"
 #include "random_vector.h"
+#include "synthetic_camera.h"
 
 namespace viqu::slam {
 namespace {
-
-StereoCamera Camera() {
-  StereoCamera c;
-  c.width = 640;
-  c.height = 480;
-  c.fx = c.fy = 400;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.bf = 400 * 0.04;
-  return c;
-}
 
 struct Scene {
   Map map;
@@ -35,7 +25,7 @@ struct Scene {
 // `n` points 1-4 m in front of the true camera; features at their exact projections plus noise of
 // `noise_px`; every 10th feature moved by 40 px (an outlier); stereo for all or none.
 void MakeScene(int n, double noise_px, bool stereo, Scene* s) {
-  const StereoCamera cam = Camera();
+  const StereoCamera cam = testing::SyntheticStereoCamera();
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U(0, 1);
   std::normal_distribution<double> N(0, noise_px);
@@ -72,7 +62,7 @@ void ExpectRecovers(bool stereo) {
   // Start 5 cm and 3 degrees off.
   s.frame.T_c_w = Eigen::Translation3d(0.05, -0.03, 0.02) * Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitY()) * s.T_c_w;
   PoseOptimizerOptions opt;
-  const int inliers = OptimizePose(Camera(), opt, &s.frame);
+  const int inliers = OptimizePose(testing::SyntheticStereoCamera(), opt, &s.frame);
   const Eigen::Isometry3d E = s.frame.T_c_w * s.T_c_w.inverse();
   const double pos_err_mm = 1000 * E.translation().norm();
   const double rot_err_deg = Eigen::AngleAxisd(E.rotation()).angle() * 180 / M_PI;
@@ -94,7 +84,7 @@ TEST(PoseOptimizer, NoiseFreeObservationsGiveTheExactPose) {
   Scene s;
   MakeScene(50, 0.0, true, &s);
   s.frame.T_c_w = Eigen::Translation3d(0.02, 0.01, -0.02) * s.T_c_w;
-  OptimizePose(Camera(), PoseOptimizerOptions{}, &s.frame);
+  OptimizePose(testing::SyntheticStereoCamera(), PoseOptimizerOptions{}, &s.frame);
   EXPECT_LT((s.frame.T_c_w.matrix() - s.T_c_w.matrix()).cwiseAbs().maxCoeff(), 1e-7);
 }
 

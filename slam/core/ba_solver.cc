@@ -6,74 +6,14 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include "slam/core/reprojection_jacobian.h"
+
 namespace viqu::slam {
 namespace {
 
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Mat63 = Eigen::Matrix<double, 6, 3>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
-
-// The residual of one observation at pose T and point P: pixels of the level (rows u, v and, for
-// stereo, the right column; a monocular third row is 0). The depth is clamped at 1e-4 m as the
-// Ceres residual did. Optionally the Jacobians for the left perturbation of T
-// (T <- [exp(omega) | nu] T: dp = -[p]x omega + nu) and for P.
-struct Residual {
-  Eigen::Vector3d r;
-  Eigen::Matrix<double, 3, 6> J_pose;
-  Eigen::Matrix3d J_point;
-};
-
-inline void Evaluate(const StereoCamera& cam, const BaObservation& o, const Eigen::Isometry3d& T,
-                     const Eigen::Vector3d& P, bool jacobians, Residual* out) {
-  const Eigen::Vector3d p = T * P;
-  const bool clamped = p.z() < 1e-4;
-  const double z = clamped ? 1e-4 : p.z();
-  const double inv_z = 1.0 / z;
-  const double u = cam.fx * p.x() * inv_z + cam.cx;
-  const double v = cam.fy * p.y() * inv_z + cam.cy;
-  const bool stereo = o.ur >= 0;
-  out->r << (u - o.u) * o.w, (v - o.v) * o.w, stereo ? (u - cam.bf * inv_z - o.ur) * o.w : 0.0;
-  if (!jacobians) return;
-  Eigen::Matrix3d Jp = Eigen::Matrix3d::Zero();  // d r / d p
-  const double inv_z2 = inv_z * inv_z;
-  Jp(0, 0) = cam.fx * inv_z;
-  Jp(0, 2) = -cam.fx * p.x() * inv_z2;
-  Jp(1, 1) = cam.fy * inv_z;
-  Jp(1, 2) = -cam.fy * p.y() * inv_z2;
-  if (stereo) {
-    Jp(2, 0) = cam.fx * inv_z;
-    Jp(2, 2) = (cam.bf - cam.fx * p.x()) * inv_z2;
-  }
-  if (clamped) Jp.col(2).setZero();  // the clamp makes the residual flat in z there
-  Jp *= o.w;
-  Eigen::Matrix3d skew;
-  skew << 0, -p.z(), p.y(), p.z(), 0, -p.x(), -p.y(), p.x(), 0;
-  out->J_pose.leftCols<3>() = -Jp * skew;
-  out->J_pose.rightCols<3>() = Jp;
-  out->J_point = Jp * T.linear();
-}
-
-// Huber cost of a squared residual norm `s` with width `a`, and the IRLS weight rho'(s).
-inline double Huber(double s, double a, double* weight) {
-  if (s <= a * a) {
-    if (weight) *weight = 1.0;
-    return s;
-  }
-  const double norm = std::sqrt(s);
-  if (weight) *weight = a / norm;
-  return 2 * a * norm - a * a;
-}
-
-Eigen::Isometry3d Perturb(const Eigen::Isometry3d& T, const Vec6& d) {
-  const Eigen::Vector3d omega = d.head<3>();
-  const double angle = omega.norm();
-  Eigen::Isometry3d D = Eigen::Isometry3d::Identity();
-  if (angle > 1e-15) D.linear() = Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix();
-  D.translation() = d.tail<3>();
-  Eigen::Isometry3d out = D * T;
-  out.linear() = Eigen::Quaterniond(out.rotation()).normalized().toRotationMatrix();
-  return out;
-}
 
 class Solver {
  public:
@@ -97,8 +37,8 @@ class Solver {
     double cost = 0;
     Residual res;
     for (const BaObservation& o : pb_.observations) {
-      Evaluate(cam_, o, poses[o.pose], points[o.point], false, &res);
-      cost += Huber(res.r.squaredNorm(), o.ur >= 0 ? opt_.huber_stereo : opt_.huber_mono, nullptr);
+      EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, poses[o.pose], points[o.point], false, &res);
+      cost += HuberCost(res.r.squaredNorm(), o.ur >= 0 ? opt_.huber_stereo : opt_.huber_mono, nullptr);
     }
     return cost;
   }
@@ -114,9 +54,9 @@ class Solver {
       Eigen::Vector3d g = Eigen::Vector3d::Zero();
       for (int k = by_point_begin_[j]; k < by_point_begin_[j + 1]; ++k) {
         const BaObservation& o = pb_.observations[order_[k]];
-        Evaluate(cam_, o, poses[o.pose], points[j], true, &res);
+        EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, poses[o.pose], points[j], true, &res);
         double wt;
-        Huber(res.r.squaredNorm(), o.ur >= 0 ? opt_.huber_stereo : opt_.huber_mono, &wt);
+        HuberCost(res.r.squaredNorm(), o.ur >= 0 ? opt_.huber_stereo : opt_.huber_mono, &wt);
         const Eigen::Matrix3d JxT_w = wt * res.J_point.transpose();
         H.noalias() += JxT_w * res.J_point;
         g.noalias() += JxT_w * res.r;
@@ -226,7 +166,7 @@ BaSolverSummary SolveBundleAdjustment(const StereoCamera& cam, const BaSolverOpt
     bool finite = true;
     for (int k = 0; k < problem->free_poses; ++k) {
       finite = finite && dp[k].allFinite();
-      poses[k] = Perturb(problem->poses[k], dp[k]);
+      poses[k] = PerturbLeft(problem->poses[k], dp[k]);
     }
     for (size_t j = 0; j < points.size(); ++j) {
       finite = finite && dx[j].allFinite();

@@ -1,7 +1,6 @@
 #include "slam/core/local_ba.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <set>
 #include <unordered_map>

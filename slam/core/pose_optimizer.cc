@@ -7,6 +7,7 @@
 
 #include "slam/core/map.h"
 #include "slam/core/reprojection_error.h"
+#include "slam/core/reprojection_jacobian.h"
 
 namespace viqu::slam {
 namespace {
@@ -14,9 +15,8 @@ namespace {
 // One matched feature: its point in the world, its measurement and its weight.
 struct Obs {
   int idx;
-  bool stereo;
   Eigen::Vector3d p_w;
-  double u, v, ur;  // measured pixel (and right-image column when stereo)
+  double u, v, ur;  // measured pixel and right-image column (< 0: monocular)
   double w;         // 1 / level scale: the residual in units of the level's pixel
 };
 
@@ -38,45 +38,14 @@ class PoseSolver {
     for (size_t k = 0; k < obs_.size(); ++k) {
       if (!use_[k]) continue;
       const Obs& o = obs_[k];
-      const Eigen::Vector3d p = T * o.p_w;
-      const double z = p.z() < 1e-4 ? 1e-4 : p.z();  // as the Ceres cost clamped it
-      const double inv_z = 1.0 / z;
-      const double u = cam_.fx * p.x() * inv_z + cam_.cx;
-      const double v = cam_.fy * p.y() * inv_z + cam_.cy;
-      Eigen::Vector3d r;
-      r << (u - o.u) * o.w, (v - o.v) * o.w, o.stereo ? (u - cam_.bf * inv_z - o.ur) * o.w : 0.0;
-      const double s = r.squaredNorm();
-      const double a = o.stereo ? huber_stereo : huber_mono;
+      Residual res;
+      EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, T, o.p_w, H != nullptr, &res);
       double weight = 1.0;
-      if (robust && s > a * a) {
-        const double norm = std::sqrt(s);
-        cost += 2 * a * norm - a * a;
-        weight = a / norm;
-      } else {
-        cost += s;
-      }
+      const double s = res.r.squaredNorm();
+      cost += robust ? HuberCost(s, o.ur >= 0 ? huber_stereo : huber_mono, &weight) : s;
       if (!H) continue;
-      // d(u, v, ur)/dp at p (z clamped as above), then dp/d(omega, nu) = [-[p]x, I].
-      Eigen::Matrix<double, 3, 3> Jp = Eigen::Matrix3d::Zero();
-      const double inv_z2 = inv_z * inv_z;
-      Jp(0, 0) = cam_.fx * inv_z;
-      Jp(0, 2) = -cam_.fx * p.x() * inv_z2;
-      Jp(1, 1) = cam_.fy * inv_z;
-      Jp(1, 2) = -cam_.fy * p.y() * inv_z2;
-      if (o.stereo) {
-        Jp(2, 0) = cam_.fx * inv_z;
-        Jp(2, 2) = (cam_.bf - cam_.fx * p.x()) * inv_z2;
-      }
-      if (p.z() < 1e-4) Jp.col(2).setZero();  // the clamp makes the residual flat in z there
-      Eigen::Matrix3d skew;
-      skew << 0, -p.z(), p.y(), p.z(), 0, -p.x(), -p.y(), p.x(), 0;
-      Eigen::Matrix<double, 3, 6> J;
-      J.leftCols<3>() = -Jp * skew;
-      J.rightCols<3>() = Jp;
-      J *= o.w;
-      if (!o.stereo) J.row(2).setZero();  // a monocular residual has two rows (r(2) is 0 too)
-      H->noalias() += weight * J.transpose() * J;
-      g->noalias() += weight * J.transpose() * r;
+      H->noalias() += weight * res.J_pose.transpose() * res.J_pose;
+      g->noalias() += weight * res.J_pose.transpose() * res.r;
     }
     return cost;
   }
@@ -86,19 +55,6 @@ class PoseSolver {
   const std::vector<Obs>& obs_;
   const std::vector<uint8_t>& use_;
 };
-
-// T moved by the left perturbation (omega, nu): R(omega) * T, translated by nu.
-Eigen::Isometry3d Perturb(const Eigen::Isometry3d& T, const Eigen::Matrix<double, 6, 1>& d) {
-  const Eigen::Vector3d omega = d.head<3>();
-  const double angle = omega.norm();
-  Eigen::Isometry3d D = Eigen::Isometry3d::Identity();
-  if (angle > 1e-15) D.linear() = Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix();
-  D.translation() = d.tail<3>();
-  Eigen::Isometry3d out = D * T;
-  // Keep the rotation orthonormal over many small steps.
-  out.linear() = Eigen::Quaterniond(out.rotation()).normalized().toRotationMatrix();
-  return out;
-}
 
 // Levenberg-Marquardt iterations from `T`; returns the optimised pose.
 Eigen::Isometry3d Solve(const PoseSolver& solver, Eigen::Isometry3d T, int iterations, double huber_mono,
@@ -114,7 +70,7 @@ Eigen::Isometry3d Solve(const PoseSolver& solver, Eigen::Isometry3d T, int itera
       A.diagonal() += lambda * H.diagonal().cwiseMax(1e-9);
       const Eigen::Matrix<double, 6, 1> d = A.ldlt().solve(-g);
       if (!d.allFinite()) return T;
-      const Eigen::Isometry3d candidate = Perturb(T, d);
+      const Eigen::Isometry3d candidate = PerturbLeft(T, d);
       const double new_cost = solver.Evaluate(candidate, huber_mono, huber_stereo, robust, nullptr, nullptr);
       if (new_cost < cost) {
         const bool converged = cost - new_cost < 1e-10 * cost || d.norm() < 1e-10;
@@ -141,7 +97,7 @@ int OptimizePose(const StereoCamera& cam, const PoseOptimizerOptions& opt, Frame
     MapPoint* p = frame->points[i];
     if (!p || p->bad) continue;
     const cv::KeyPoint& kp = f.keypoints[i];
-    obs.push_back({static_cast<int>(i), f.u_right[i] >= 0, p->p_w, kp.pt.x, kp.pt.y, f.u_right[i],
+    obs.push_back({static_cast<int>(i), p->p_w, kp.pt.x, kp.pt.y, f.u_right[i],
                    1.0 / f.level_scale[kp.octave]});
     frame->outlier[i] = false;
   }
