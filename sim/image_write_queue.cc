@@ -1,7 +1,5 @@
 #include "sim/image_write_queue.h"
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "common/errors.h"
 
 namespace viqu::sim {
@@ -23,11 +21,11 @@ void ImageWriteQueue::ThrowIfFailed() {
   if (!error_.empty()) throw RunError(error_);
 }
 
-void ImageWriteQueue::Push(std::string path, cv::Mat image, const std::vector<int>& params) {
+void ImageWriteQueue::Push(std::string path, cv::Mat image, PngContent content) {
   std::unique_lock<std::mutex> lock(mutex_);
   changed_.wait(lock, [this] { return jobs_.size() < max_pending_ || !error_.empty(); });
   ThrowIfFailed();
-  jobs_.push_back(Job{std::move(path), std::move(image), params});
+  jobs_.push_back(Job{std::move(path), std::move(image), content});
   changed_.notify_all();
 }
 
@@ -49,8 +47,8 @@ void ImageWriteQueue::Work() {
     lock.unlock();
     std::string failure;
     try {
-      if (!cv::imwrite(job.path, job.image, job.params)) failure = "cannot write " + job.path;
-    } catch (const cv::Exception& e) {
+      failure = WritePng(job.path, job.image, job.content);
+    } catch (const std::exception& e) {
       failure = "cannot write " + job.path + ": " + e.what();
     }
     lock.lock();

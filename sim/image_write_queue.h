@@ -6,9 +6,10 @@
 #include <mutex>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include <opencv2/core/mat.hpp>
+
+#include "sim/png_writer.h"
 
 namespace viqu::sim {
 
@@ -21,9 +22,9 @@ class ImageWriteQueue {
   ImageWriteQueue& operator=(const ImageWriteQueue&) = delete;
 
   // Queues `image` (which must not be modified afterwards by the caller: pass a copy or a Mat
-  // that is not reused) for cv::imwrite(path, image, params). Throws viqu::RunError if an
-  // earlier write failed.
-  void Push(std::string path, cv::Mat image, const std::vector<int>& params);
+  // that is not reused) for WritePng(path, image, content) (sim/png_writer.h: RGB byte order for
+  // colour). Throws viqu::RunError if an earlier write failed.
+  void Push(std::string path, cv::Mat image, PngContent content);
 
   // Waits until every queued image is written; throws viqu::RunError naming the first failure.
   void Drain();
@@ -32,7 +33,7 @@ class ImageWriteQueue {
   struct Job {
     std::string path;
     cv::Mat image;
-    std::vector<int> params;
+    PngContent content;
   };
   void Work();
   void ThrowIfFailed();  // with mutex_ held

@@ -6,8 +6,6 @@
 #include <vector>
 
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "common/atomic_file.h"
 #include "common/errors.h"
@@ -54,7 +52,8 @@ TumRecorder::~TumRecorder() {
   fs::remove_all(partial_dir_, ec);
 }
 
-void TumRecorder::WriteImage(const char* folder, ListStream* list, int64_t t_ns, const cv::Mat& image) {
+void TumRecorder::WriteImage(const char* folder, ListStream* list, int64_t t_ns, const cv::Mat& image,
+                             PngContent content) {
   if (finished_) throw RunError(std::string("TumRecorder: ") + folder + " image added after Finish()");
   if (t_ns <= list->last_t_ns) {
     throw RunError(std::string("TumRecorder: ") + folder + " timestamp " + std::to_string(t_ns) +
@@ -62,20 +61,15 @@ void TumRecorder::WriteImage(const char* folder, ListStream* list, int64_t t_ns,
   }
   list->last_t_ns = t_ns;
   const std::string name = std::string(folder) + "/" + FormatSeconds(t_ns) + ".png";
-  // Fast lossless PNG, as EurocRecorder (level 1, Huffman-only coding).
-  static const std::vector<int> kPngFast = {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
-                                            cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY};
-  writer_->Push(partial_dir_ + "/" + name, image, kPngFast);  // `image` is not reused by the caller
+  writer_->Push(partial_dir_ + "/" + name, image, content);  // `image` is not reused by the caller
   list->file->Write(FormatSeconds(t_ns) + " " + name + "\n");
 }
 
 void TumRecorder::AddFrame(const StereoFrame& frame) {
   if (frame.left_rgb.type() != CV_8UC3) throw RunError("TumRecorder: the left image must be CV_8UC3 (RGB)");
-  cv::Mat bgr;  // our images are RGB; OpenCV writes BGR
-  cv::cvtColor(frame.left_rgb, bgr, cv::COLOR_RGB2BGR);
-  WriteImage("rgb", &rgb_, frame.t_ns, bgr);
+  WriteImage("rgb", &rgb_, frame.t_ns, frame.left_rgb.clone(), PngContent::kPhoto);  // the caller reuses its buffer
   if (frame.left_depth_m.empty()) return;
-  WriteImage("depth", &depth_, frame.t_ns, DepthToSteps(frame.left_depth_m, kDepthScale));
+  WriteImage("depth", &depth_, frame.t_ns, DepthToSteps(frame.left_depth_m, kDepthScale), PngContent::kFlat);
 }
 
 void TumRecorder::AddGroundTruth(const GroundTruthState& state) {

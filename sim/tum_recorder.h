@@ -51,7 +51,7 @@ class TumRecorder {
     std::unique_ptr<AtomicOutputFile> file;                   // rgb.txt or depth.txt, temporary name
     int64_t last_t_ns = std::numeric_limits<int64_t>::min();  // stamp of the last row (ns)
   };
-  void WriteImage(const char* folder, ListStream* list, int64_t t_ns, const cv::Mat& image);
+  void WriteImage(const char* folder, ListStream* list, int64_t t_ns, const cv::Mat& image, PngContent content);
 
   std::string final_dir_;    // DATASET
   std::string partial_dir_;  // DATASET.partial

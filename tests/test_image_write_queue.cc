@@ -21,7 +21,7 @@ TEST(ImageWriteQueue, WritesEveryImageLosslesslyBeforeDrainReturns) {
     cv::Mat img(48, 64, CV_16UC1);
     cv::randu(img, 0, 65535);
     images.push_back(img);
-    q.Push((dir / (std::to_string(i) + ".png")).string(), img.clone(), {});
+    q.Push((dir / (std::to_string(i) + ".png")).string(), img.clone(), PngContent::kFlat);
   }
   q.Drain();
   for (int i = 0; i < 10; ++i) {
@@ -34,7 +34,7 @@ TEST(ImageWriteQueue, WritesEveryImageLosslesslyBeforeDrainReturns) {
 
 TEST(ImageWriteQueue, ReportsAFailedWriteWithItsPath) {
   ImageWriteQueue q;
-  q.Push("/nonexistent-folder/x.png", cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3)), {});
+  q.Push("/nonexistent-folder/x.png", cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3)), PngContent::kPhoto);
   try {
     q.Drain();
     FAIL() << "Drain did not throw";
