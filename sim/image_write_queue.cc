@@ -36,6 +36,7 @@ void ImageWriteQueue::Drain() {
 }
 
 void ImageWriteQueue::Work() {
+  PngEncoder encoder;  // its buffers serve every image of the queue
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     changed_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
@@ -47,7 +48,7 @@ void ImageWriteQueue::Work() {
     lock.unlock();
     std::string failure;
     try {
-      failure = WritePng(job.path, job.image, job.content);
+      failure = WritePng(job.path, job.image, job.content, &encoder);
     } catch (const std::exception& e) {
       failure = "cannot write " + job.path + ": " + e.what();
     }

@@ -71,6 +71,22 @@ TEST(PngWriter, FlatContentCompressesLabelImages) {
   EXPECT_LT(png.size(), labels.total() * 2 / 50) << "string matching should shrink a label image 50-fold";
 }
 
+TEST(PngWriter, OneEncoderKeepsNothingOfTheImageBefore) {
+  // The encoder reuses its buffers: a large colour image, then smaller ones of other types.
+  PngEncoder encoder;
+  cv::Mat big(120, 160, CV_8UC3), grey(17, 23, CV_8UC1), depth(31, 11, CV_16UC1);
+  cv::randu(big, 0, 256);
+  cv::randu(grey, 0, 256);
+  cv::randu(depth, 0, 65536);
+  cv::Mat back;
+  cv::cvtColor(Decode(encoder.Encode(big, PngContent::kPhoto)), back, cv::COLOR_BGR2RGB);
+  EXPECT_EQ(MaxDiff(back, big), 0.0);
+  EXPECT_EQ(MaxDiff(Decode(encoder.Encode(grey, PngContent::kPhoto)), grey), 0.0);
+  EXPECT_EQ(MaxDiff(Decode(encoder.Encode(depth, PngContent::kFlat)), depth), 0.0);
+  EXPECT_EQ(MaxDiff(Decode(encoder.Encode(grey, PngContent::kFlat)), grey), 0.0);
+  EXPECT_EQ(encoder.Encode(grey, PngContent::kPhoto), EncodePng(grey, PngContent::kPhoto)) << "same bytes as a new encoder";
+}
+
 TEST(PngWriter, RejectsOtherTypesAndEmptyImages) {
   EXPECT_THROW(EncodePng(cv::Mat(4, 4, CV_32FC1, cv::Scalar(0)), PngContent::kFlat), RunError);
   EXPECT_THROW(EncodePng(cv::Mat(4, 4, CV_8UC4, cv::Scalar(0)), PngContent::kPhoto), RunError);
@@ -78,11 +94,13 @@ TEST(PngWriter, RejectsOtherTypesAndEmptyImages) {
 }
 
 TEST(PngWriter, WriteReportsAnUnwritablePath) {
-  const std::string err = WritePng("/nonexistent-folder/a.png", cv::Mat(2, 2, CV_8UC1, cv::Scalar(1)), PngContent::kFlat);
+  PngEncoder encoder;
+  const std::string err =
+      WritePng("/nonexistent-folder/a.png", cv::Mat(2, 2, CV_8UC1, cv::Scalar(1)), PngContent::kFlat, &encoder);
   EXPECT_NE(err.find("/nonexistent-folder/a.png"), std::string::npos) << err;
   const std::string path = (std::filesystem::temp_directory_path() / "viqu_png_writer.png").string();
   const cv::Mat img(3, 5, CV_8UC1, cv::Scalar(42));
-  ASSERT_EQ(WritePng(path, img, PngContent::kFlat), "");
+  ASSERT_EQ(WritePng(path, img, PngContent::kFlat, &encoder), "");
   EXPECT_EQ(MaxDiff(cv::imread(path, cv::IMREAD_UNCHANGED), img), 0.0);
   std::remove(path.c_str());
 }

@@ -1,0 +1,166 @@
+#include "sim/huffman_deflate.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <queue>
+#include <utility>
+
+namespace viqu::sim {
+namespace {
+
+// Input bytes per deflate block: each gets its own code (large enough that the ~100-byte block
+// header is lost in it, small enough to follow a change of content down an image).
+constexpr size_t kBlockBytes = 128 * 1024;
+constexpr int kEndOfBlock = 256;
+constexpr int kLiteralSymbols = 257;   // 0-255 and end of block (no length codes are used)
+constexpr int kMaxCodeBits = 15;       // RFC 1951 3.2.7
+constexpr int kMaxCodeLengthBits = 7;  // the code-length code's limit (3-bit fields)
+// The order in which the code-length code's lengths are sent (RFC 1951 3.2.7).
+constexpr int kCodeLengthOrder[19] = {16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15};
+
+// Least significant bit first, as deflate packs its bits.
+class BitWriter {
+ public:
+  explicit BitWriter(std::vector<uint8_t>* out) : out_(out) {}
+  void Put(uint32_t bits, int count) {
+    acc_ |= static_cast<uint64_t>(bits) << used_;
+    used_ += count;
+    if (used_ >= 32) {
+      for (int i = 0; i < 4; ++i) out_->push_back(static_cast<uint8_t>(acc_ >> (8 * i)));
+      acc_ >>= 32;
+      used_ -= 32;
+    }
+  }
+  void Finish() {  // pads the last byte with zeros
+    while (used_ > 0) {
+      out_->push_back(static_cast<uint8_t>(acc_));
+      acc_ >>= 8;
+      used_ = std::max(0, used_ - 8);
+    }
+  }
+
+ private:
+  std::vector<uint8_t>* out_;
+  uint64_t acc_ = 0;
+  int used_ = 0;
+};
+
+// Depths of the leaves of a Huffman tree over the nonzero frequencies (ties broken by node order,
+// so the result is deterministic).
+std::vector<int> HuffmanDepths(const std::vector<uint64_t>& weight) {
+  const int n = static_cast<int>(weight.size());
+  std::vector<int> parent(2 * n, -1);
+  using Node = std::pair<uint64_t, int>;  // weight, node index
+  std::priority_queue<Node, std::vector<Node>, std::greater<Node>> heap;
+  for (int i = 0; i < n; ++i) {
+    if (weight[i] > 0) heap.push({weight[i], i});
+  }
+  int next = n;
+  while (heap.size() > 1) {
+    const Node a = heap.top();
+    heap.pop();
+    const Node b = heap.top();
+    heap.pop();
+    parent[a.second] = parent[b.second] = next;
+    heap.push({a.first + b.first, next++});
+  }
+  std::vector<int> depth(n, 0);
+  for (int i = 0; i < n; ++i) {
+    if (weight[i] == 0) continue;
+    for (int p = parent[i]; p != -1; p = parent[p]) ++depth[i];
+  }
+  return depth;
+}
+
+// Canonical codes for the lengths (RFC 1951 3.2.2), bit-reversed for LSB-first output.
+std::vector<uint32_t> CanonicalCodes(const std::vector<uint8_t>& lengths) {
+  int count[kMaxCodeBits + 1] = {};
+  for (uint8_t l : lengths) ++count[l];
+  count[0] = 0;
+  uint32_t next[kMaxCodeBits + 2] = {};
+  uint32_t code = 0;
+  for (int bits = 1; bits <= kMaxCodeBits; ++bits) {
+    code = (code + count[bits - 1]) << 1;
+    next[bits] = code;
+  }
+  std::vector<uint32_t> codes(lengths.size(), 0);
+  for (size_t s = 0; s < lengths.size(); ++s) {
+    const int len = lengths[s];
+    if (len == 0) continue;
+    const uint32_t c = next[len]++;
+    uint32_t reversed = 0;
+    for (int b = 0; b < len; ++b) reversed |= ((c >> b) & 1u) << (len - 1 - b);
+    codes[s] = reversed;
+  }
+  return codes;
+}
+
+void PutBlock(const uint8_t* data, size_t n, bool final, BitWriter* w) {
+  std::vector<uint32_t> freq(kLiteralSymbols, 0);
+  for (size_t i = 0; i < n; ++i) ++freq[data[i]];
+  freq[kEndOfBlock] = 1;
+  const std::vector<uint8_t> lit_len = LimitedCodeLengths(freq, kMaxCodeBits);
+  const std::vector<uint32_t> lit_code = CanonicalCodes(lit_len);
+
+  // The code lengths to send: 257 literal/length ones, then one distance code of length 1 (no
+  // distance is ever used; RFC 1951 asks for one code of one bit then).
+  std::vector<uint8_t> sent(lit_len);
+  sent.push_back(1);
+  std::vector<uint32_t> cl_freq(19, 0);
+  for (uint8_t l : sent) ++cl_freq[l];
+  const std::vector<uint8_t> cl_len = LimitedCodeLengths(cl_freq, kMaxCodeLengthBits);
+  const std::vector<uint32_t> cl_code = CanonicalCodes(cl_len);
+
+  w->Put(final ? 1 : 0, 1);
+  w->Put(2, 2);                          // dynamic Huffman codes
+  w->Put(kLiteralSymbols - 257, 5);      // HLIT
+  w->Put(0, 5);                          // HDIST: one distance code
+  w->Put(19 - 4, 4);                     // HCLEN: all 19 code-length code lengths
+  for (int s : kCodeLengthOrder) w->Put(cl_len[s], 3);
+  for (uint8_t l : sent) w->Put(cl_code[l], cl_len[l]);
+  for (size_t i = 0; i < n; ++i) w->Put(lit_code[data[i]], lit_len[data[i]]);
+  w->Put(lit_code[kEndOfBlock], lit_len[kEndOfBlock]);
+}
+
+}  // namespace
+
+std::vector<uint8_t> LimitedCodeLengths(const std::vector<uint32_t>& freq, int max_bits) {
+  std::vector<uint64_t> weight(freq.begin(), freq.end());
+  // A code needs two symbols: give a lone one (or none) partners, the lowest unused indices.
+  auto used = std::count_if(weight.begin(), weight.end(), [](uint64_t f) { return f > 0; });
+  for (size_t s = 0; s < weight.size() && used < 2; ++s) {
+    if (weight[s] == 0) {
+      weight[s] = 1;
+      ++used;
+    }
+  }
+  while (true) {
+    const std::vector<int> depth = HuffmanDepths(weight);
+    if (*std::max_element(depth.begin(), depth.end()) <= max_bits) return std::vector<uint8_t>(depth.begin(), depth.end());
+    // Too deep: flatten the distribution (halve every weight, keeping the used ones used) and
+    // build again. Each round halves the ratio between the largest and smallest weight.
+    for (uint64_t& f : weight) {
+      if (f > 0) f = std::max<uint64_t>(1, f / 2);
+    }
+  }
+}
+
+void HuffmanOnlyZlib(const uint8_t* data, size_t n, std::vector<uint8_t>* out) {
+  out->clear();
+  out->reserve(n + n / 8 + 64);
+  out->push_back(0x78);  // CMF: deflate, 32 KiB window
+  out->push_back(0x01);  // FLG: fastest compression, no dictionary; (CMF * 256 + FLG) % 31 == 0
+  BitWriter w(out);
+  size_t pos = 0;
+  do {
+    const size_t len = std::min(kBlockBytes, n - pos);
+    PutBlock(data + pos, len, pos + len == n, &w);
+    pos += len;
+  } while (pos < n);
+  w.Finish();
+  const uLong adler = adler32(adler32(0, nullptr, 0), data, static_cast<uInt>(n));
+  for (int i = 3; i >= 0; --i) out->push_back(static_cast<uint8_t>(adler >> (8 * i)));
+}
+
+}  // namespace viqu::sim
