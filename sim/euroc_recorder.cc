@@ -4,9 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <utility>
 #include <vector>
-
-
 
 #include "common/atomic_file.h"
 #include "common/errors.h"
@@ -160,13 +159,12 @@ void EurocRecorder::CheckStamp(CsvStream* s, int64_t t_ns, const char* what) con
   s->last_t_ns = t_ns;
 }
 
-void EurocRecorder::WriteImage(const std::string& folder, CsvStream* csv, int64_t t_ns, const cv::Mat& image,
+void EurocRecorder::WriteImage(const std::string& folder, CsvStream* csv, int64_t t_ns, cv::Mat image,
                                PngContent content) {
   CheckStamp(csv, t_ns, folder.c_str());
   const std::string name = RowStamp(t_ns) + ".png";
   const std::string path = mav0_ + "/" + folder + "/data/" + name;
-  // The queue encodes on its own thread; it gets its own copy, as callers reuse their buffers.
-  writer_->Push(path, image.clone(), content);
+  writer_->Push(path, std::move(image), content);  // encoded on the queue's thread
   csv->file->Write(RowStamp(t_ns) + "," + name + "\n");
 }
 
@@ -174,15 +172,17 @@ void EurocRecorder::AddFrame(const StereoFrame& frame) {
   for (const cv::Mat* m : {&frame.left_rgb, &frame.right_rgb}) {
     if (m->type() != CV_8UC3) throw RunError("EurocRecorder: stereo images must be CV_8UC3 (RGB)");
   }
-  WriteImage("cam0", &cam0_, frame.t_ns, frame.left_rgb, PngContent::kPhoto);
-  WriteImage("cam1", &cam1_, frame.t_ns, frame.right_rgb, PngContent::kPhoto);
+  // The frame's images are copied for the queue (the caller goes on with its buffers); the depth
+  // steps below are a new image already.
+  WriteImage("cam0", &cam0_, frame.t_ns, frame.left_rgb.clone(), PngContent::kPhoto);
+  WriteImage("cam1", &cam1_, frame.t_ns, frame.right_rgb.clone(), PngContent::kPhoto);
 
   if (rig_.camera.depth && !frame.left_depth_m.empty()) {
     WriteImage("depth0", &depth0_, frame.t_ns, DepthToSteps(frame.left_depth_m, kDepthStepsPerM), PngContent::kFlat);
   }
   if (rig_.camera.segmentation && !frame.left_instance_id.empty()) {
     if (frame.left_instance_id.type() != CV_16U) throw RunError("EurocRecorder: instance ids must be CV_16U");
-    WriteImage("seg0", &seg0_, frame.t_ns, frame.left_instance_id, PngContent::kFlat);
+    WriteImage("seg0", &seg0_, frame.t_ns, frame.left_instance_id.clone(), PngContent::kFlat);
     std::string rows;
     for (const SegmentInstance& inst : frame.instances) {
       rows += RowStamp(frame.t_ns) + "," + std::to_string(inst.id) + "," + CategoryName(inst.category) + "," +

@@ -87,7 +87,8 @@ class EurocRecorder {
   };
   CsvStream OpenCsv(const std::string& folder, const std::string& header) const;
   void CheckStamp(CsvStream* s, int64_t t_ns, const char* what) const;
-  void WriteImage(const std::string& folder, CsvStream* csv, int64_t t_ns, const cv::Mat& image, PngContent content);
+  // `image` goes to the write queue as it is: a copy, or a Mat nobody modifies afterwards.
+  void WriteImage(const std::string& folder, CsvStream* csv, int64_t t_ns, cv::Mat image, PngContent content);
   void WriteSensorFiles() const;
 
   std::string final_dir_;    // DATASET

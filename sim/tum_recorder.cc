@@ -5,8 +5,6 @@
 #include <filesystem>
 #include <vector>
 
-
-
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "sim/depth_quantisation.h"
