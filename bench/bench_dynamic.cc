@@ -111,9 +111,7 @@ SyntheticFrame MakeFrame(const slam::StereoCamera& cam, const std::vector<SceneP
     const double z = sp.p.z();
     const double sigma_z = z * z * 0.5 / cam.bf;  // disparity noise 0.5 px
     const double depth = std::max(0.1, z + sigma_z * unit(rng));
-    cv::KeyPoint kp(static_cast<float>(uv.x()), static_cast<float>(uv.y()), 31.0f);
-    kp.octave = 0;
-    f->keypoints.push_back(kp);
+    f->keypoints.emplace_back(cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y())), 0);
     f->depth.push_back(static_cast<float>(depth));
     f->u_right.push_back(static_cast<float>(uv.x() - cam.bf / depth));
     Descriptor d = *sp.descriptor;

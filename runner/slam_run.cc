@@ -74,6 +74,7 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   json->Set("tracking.keyframes_freed", st.keyframes_freed);
   json->Set("tracking.map_points_freed", st.map_points_freed);
   json->Set("tracking.map_points_held", st.map_points_held);
+  json->Set("tracking.map_heap_mb", static_cast<double>(st.map_heap_bytes) / (1024.0 * 1024.0));
   // How well the motion prior (leg odometry + IMU, the gyro, or the constant-velocity guess)
   // predicted each tracked frame's pose.
   json->Set("tracking.prior_frames_external", external_priors_);

@@ -14,8 +14,9 @@ constexpr int kFeatures = 10;
 
 Frame MakeFrame(int64_t t_ns) {
   auto f = std::make_shared<FrameFeatures>();
-  f->keypoints.assign(kFeatures, cv::KeyPoint(10.f, 10.f, 31.f));
+  f->keypoints.assign(kFeatures, FeaturePoint(cv::Point2f(10.f, 10.f), 0));
   f->descriptors = cv::Mat::zeros(kFeatures, 32, CV_8U);
+  for (int r = 0; r < kFeatures; ++r) f->descriptors.row(r).setTo(r + 1);  // a different one per feature
   f->u_right.assign(kFeatures, -1.f);
   f->depth.assign(kFeatures, -1.f);
   f->object.assign(kFeatures, 0);
@@ -69,7 +70,8 @@ TEST(MapReclaim, FreesUnpinnedCulledObjectsAndLeavesNoLinkToThem) {
   }
   // A good point whose reference is gone still summarises its observations.
   pts[0]->UpdateFromObservations();
-  EXPECT_EQ(pts[0]->descriptor.cols, 32);
+  const auto& [obs_kf, obs_idx] = *pts[0]->observations.begin();
+  EXPECT_EQ(DescriptorDistance(pts[0]->descriptor.data(), obs_kf->features->descriptors.ptr<uint8_t>(obs_idx)), 0);
 
   // Ids keep counting past the freed objects.
   EXPECT_EQ(map.AddKeyFrame(MakeFrame(9))->id, 3);

@@ -302,7 +302,7 @@ struct StageFixture {
     auto add = [&](const ObjectSnapshot& s, uint16_t id) {
       for (size_t i = 0; i < s.size(); ++i) {
         const Eigen::Vector2d uv = cam.Project(s.p_w[i]);
-        f.keypoints.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()), 8.f);
+        f.keypoints.emplace_back(cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y())), 0);
         f.depth.push_back(static_cast<float>(s.p_w[i].z()));
         f.u_right.push_back(static_cast<float>(uv.x() - cam.bf / s.p_w[i].z()));
         f.object.push_back(id);
@@ -312,7 +312,7 @@ struct StageFixture {
     add(person.Observe(t_ns, person_w), 3);
     add(box.Observe(t_ns, box_w), 5);
     for (int i = 0; i < 40; ++i) {
-      f.keypoints.emplace_back(10.f + i, 10.f, 8.f);
+      f.keypoints.emplace_back(cv::Point2f(10.f + i, 10.f), 0);
       f.depth.push_back(3.f);
       f.u_right.push_back(5.f + i);
       f.object.push_back(i < 10 ? 7 : 0);

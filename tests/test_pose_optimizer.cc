@@ -43,7 +43,7 @@ void MakeScene(int n, double noise_px, bool stereo, Scene* s) {
       du += 40;
       s->outliers.push_back(i);
     }
-    f->keypoints.emplace_back(static_cast<float>(uv.x() + du), static_cast<float>(uv.y() + dv), 31.f, -1.f, 0.f, 0);
+    f->keypoints.emplace_back(cv::Point2f(static_cast<float>(uv.x() + du), static_cast<float>(uv.y() + dv)), 0);
     f->u_right.push_back(stereo ? static_cast<float>(cam.ProjectRight(p_c) + du + dr) : -1.f);
     f->depth.push_back(stereo ? static_cast<float>(p_c.z()) : -1.f);
     p_w.push_back(s->T_c_w.inverse() * p_c);

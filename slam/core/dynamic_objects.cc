@@ -11,7 +11,7 @@ constexpr int kMaxSnapshotPoints = 256;  // features per object kept for matchin
 
 // Whether the pixels `r` px away from (u, v) in the eight directions all carry `id` (pixels off
 // the image count as the same id: the image border is not the object's edge).
-bool InteriorOf(const cv::Mat& instance_id, const cv::KeyPoint& kp, uint16_t id, int r) {
+bool InteriorOf(const cv::Mat& instance_id, const FeaturePoint& kp, uint16_t id, int r) {
   const int u = static_cast<int>(std::lround(kp.pt.x)), v = static_cast<int>(std::lround(kp.pt.y));
   for (int dv = -r; dv <= r; dv += r) {
     for (int du = -r; du <= r; du += r) {

@@ -7,6 +7,13 @@
 
 namespace viqu::slam {
 
+std::vector<FeaturePoint> ToFeaturePoints(const std::vector<cv::KeyPoint>& keypoints) {
+  std::vector<FeaturePoint> out;
+  out.reserve(keypoints.size());
+  for (const cv::KeyPoint& k : keypoints) out.emplace_back(k.pt, k.octave);
+  return out;
+}
+
 void FrameFeatures::BuildGrid(int width, int height) {
   grid_cols = (width + kCellPx - 1) / kCellPx;
   grid_rows = (height + kCellPx - 1) / kCellPx;
@@ -38,7 +45,7 @@ std::vector<int> FrameFeatures::InArea(double u, double v, double radius, int mi
       const int cell = y * grid_cols + x;
       for (int k = grid_start[cell]; k < grid_start[cell + 1]; ++k) {
         const int i = grid_index[k];
-        const cv::KeyPoint& kp = keypoints[i];
+        const FeaturePoint& kp = keypoints[i];
         if (min_level >= 0 && kp.octave < min_level) continue;
         if (max_level >= 0 && kp.octave > max_level) continue;
         const double du = kp.pt.x - u, dv = kp.pt.y - v;

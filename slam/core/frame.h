@@ -17,11 +17,23 @@ namespace viqu::slam {
 
 class MapPoint;
 
+// Where a feature lies: all that tracking and mapping read of cv::KeyPoint once the descriptors
+// are computed (12 bytes against 28; a keyframe keeps one per feature for the rest of the run).
+struct FeaturePoint {
+  cv::Point2f pt;  // level-0 pixel coordinates
+  int octave = 0;  // pyramid level
+  FeaturePoint() = default;
+  FeaturePoint(cv::Point2f pt, int octave) : pt(pt), octave(octave) {}
+};
+
+// The place and level of each keypoint, in a vector of exactly their number.
+std::vector<FeaturePoint> ToFeaturePoints(const std::vector<cv::KeyPoint>& keypoints);
+
 // Features of one left image; immutable once built.
 struct FrameFeatures {
   static constexpr int kCellPx = 16;   // search grid cell (px)
 
-  std::vector<cv::KeyPoint> keypoints; // level-0 pixel coordinates; octave = pyramid level
+  std::vector<FeaturePoint> keypoints; // level-0 pixel coordinates and pyramid level
   cv::Mat descriptors;                 // CV_8U, 32 bytes a row
   std::vector<float> u_right;          // column in the right image, -1 if no stereo match
   std::vector<float> depth;            // stereo/RGB-D depth (m), -1 if none

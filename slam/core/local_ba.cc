@@ -79,7 +79,7 @@ LocalBaResult LocalBundleAdjustment(const StereoCamera& cam, const LocalBaOption
       for (const auto& [k, idx] : p->observations) {
         if (k->bad || (!local_set.count(k) && !fixed_set.count(k))) continue;
         obs.push_back({k, p, idx});
-        const cv::KeyPoint& kp = k->features->keypoints[idx];
+        const FeaturePoint& kp = k->features->keypoints[idx];
         problem.observations.push_back({pose_index.at(k), j, kp.pt.x, kp.pt.y, k->features->u_right[idx],
                                         1.0 / k->features->level_scale[kp.octave]});
       }

@@ -185,8 +185,8 @@ int LocalMapper::TriangulateNewPoints(KeyFrame* kf) {
     const Eigen::Isometry3d T2 = kf2->T_c_w;
     for (const auto& [i1, i2] : matcher_.SearchForTriangulation(*kf, *kf2)) {
       if (kf->points[i1] || kf2->points[i2]) continue;
-      const cv::KeyPoint& k1 = f1.keypoints[i1];
-      const cv::KeyPoint& k2 = f2.keypoints[i2];
+      const FeaturePoint& k1 = f1.keypoints[i1];
+      const FeaturePoint& k2 = f2.keypoints[i2];
       const Eigen::Vector3d x1((k1.pt.x - cam_.cx) / cam_.fx, (k1.pt.y - cam_.cy) / cam_.fy, 1);
       const Eigen::Vector3d x2((k2.pt.x - cam_.cx) / cam_.fx, (k2.pt.y - cam_.cy) / cam_.fy, 1);
       const Eigen::Vector3d r1 = T1.rotation().transpose() * x1;

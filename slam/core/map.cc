@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <stdexcept>
 #include <unordered_set>
 
 #include "slam/features/hamming.h"
@@ -13,6 +14,14 @@ namespace viqu::slam {
 int DescriptorDistance(const uint8_t* a, const uint8_t* b) { return HammingDistance(a, b, 32); }
 
 int DescriptorDistance(const cv::Mat& a, const cv::Mat& b) { return DescriptorDistance(a.ptr<uint8_t>(), b.ptr<uint8_t>()); }
+
+void MapPoint::SetDescriptor(const cv::Mat& descriptors, int row) {
+  if (descriptors.type() != CV_8U || descriptors.cols != static_cast<int>(descriptor.size())) {
+    throw std::logic_error("MapPoint::SetDescriptor: descriptors must be CV_8U with 32 bytes a row");
+  }
+  const uint8_t* src = descriptors.ptr<uint8_t>(row);
+  std::copy(src, src + descriptor.size(), descriptor.begin());
+}
 
 void MapPoint::UpdateFromObservations() {
   if (observations.empty()) return;
@@ -35,7 +44,7 @@ void MapPoint::UpdateFromObservations() {
   }
   auto it = observations.begin();
   std::advance(it, best);
-  descriptor = it->first->features->descriptors.row(it->second);
+  SetDescriptor(it->first->features->descriptors, it->second);
 
   Eigen::Vector3d nsum = Eigen::Vector3d::Zero();
   for (const auto& [kf, idx] : observations) nsum += (p_w - kf->Center()).normalized();
@@ -217,6 +226,33 @@ size_t Map::Reclaim(const std::vector<const KeyFrame*>& pinned_keyframes, const 
   keyframes_freed_ += static_cast<int64_t>(kfs);
   points_freed_ += static_cast<int64_t>(points);
   return kfs + points;
+}
+
+namespace {
+// A node of std::map<KeyFrame*, int> in libstdc++ (colour, three links, key and value: 40 bytes)
+// with glibc malloc's 8-byte header, rounded to its 16-byte granule.
+constexpr size_t kTreeNodeBytes = 48;
+
+template <class T>
+size_t VectorBytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+size_t FeatureBytes(const FrameFeatures& f) {
+  return sizeof(FrameFeatures) + VectorBytes(f.keypoints) + f.descriptors.total() * f.descriptors.elemSize() +
+         VectorBytes(f.u_right) + VectorBytes(f.depth) + VectorBytes(f.object) + VectorBytes(f.level_sigma2) +
+         VectorBytes(f.level_scale) + VectorBytes(f.grid_start) + VectorBytes(f.grid_index);
+}
+}  // namespace
+
+size_t Map::HeapBytes() const {
+  size_t bytes = VectorBytes(keyframes_) + VectorBytes(points_);
+  for (const auto& k : keyframes_) {
+    bytes += sizeof(KeyFrame) + VectorBytes(k->points) + k->covisible.size() * kTreeNodeBytes;
+    if (k->features) bytes += FeatureBytes(*k->features);
+  }
+  for (const auto& p : points_) bytes += sizeof(MapPoint) + p->observations.size() * kTreeNodeBytes;
+  return bytes;
 }
 
 int Map::GoodKeyFrames() const {

@@ -4,6 +4,7 @@
 // links may still hold them (the tracker's frames and local map, the mapper's queue and probation
 // list); Reclaim() frees the rest, so a long run's memory stays bounded. All access happens under
 // Map::mutex.
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -36,7 +37,9 @@ class MapPoint {
   Eigen::Vector3d p_w;                     // position in world (m)
   KeyFrame* reference;                     // keyframe that created it
   KeyFrameMap<int> observations;           // keyframe -> feature index (ordered by keyframe id)
-  cv::Mat descriptor;                      // the observation descriptor closest to all others
+  // The observation descriptor closest to all others (ORB: 32 bytes), a copy: a point outlives
+  // the keyframe it was taken from.
+  std::array<uint8_t, 32> descriptor{};
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // mean viewing direction (unit)
   double min_distance = 0, max_distance = 0;         // scale-invariance range (m)
   int visible = 1;                         // frames where it projected into the image
@@ -45,6 +48,8 @@ class MapPoint {
   uint16_t object = 0;                     // segmentation instance of the feature that created it (0 = none)
   bool bad = false;
 
+  // Copies row `row` of `descriptors` (CV_8U, 32 bytes a row) into `descriptor`.
+  void SetDescriptor(const cv::Mat& descriptors, int row);
   // Recomputes descriptor, normal and distance range from the observations.
   void UpdateFromObservations();
   // Pyramid level expected at distance `dist`.
@@ -108,6 +113,10 @@ class Map {
   const std::vector<std::unique_ptr<MapPoint>>& points() const { return points_; }
   int GoodKeyFrames() const;
   int GoodPoints() const;
+  // Heap bytes held by the keyframes and map points (held ones included), counted from their
+  // sizes and the capacities of their containers; a tree node is counted at kTreeNodeBytes. An
+  // account of where a run's memory goes, not a measurement of the allocator's use.
+  size_t HeapBytes() const;
 
  private:
   std::vector<std::unique_ptr<KeyFrame>> keyframes_;

@@ -78,7 +78,7 @@ int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) co
     for (int j : cand) {
       if (cur->points[j] && !cur->points[j]->bad) continue;
       if (f.u_right[j] >= 0 && std::abs(ur - f.u_right[j]) > r) continue;
-      b.Offer(j, DescriptorDistance(p->descriptor.ptr<uint8_t>(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
+      b.Offer(j, DescriptorDistance(p->descriptor.data(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
     }
     if (b.idx >= 0 && b.dist <= opt_.max_hamming) {
       cur->points[b.idx] = p;
@@ -113,7 +113,7 @@ int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radi
     for (int j : cand) {
       if (cur->points[j] && !cur->points[j]->bad && !cur->outlier[j] && cur->points[j]->observations.size() > 0) continue;
       if (f.u_right[j] >= 0 && std::abs(ur - f.u_right[j]) > r) continue;
-      b.Offer(j, DescriptorDistance(p->descriptor.ptr<uint8_t>(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
+      b.Offer(j, DescriptorDistance(p->descriptor.data(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
     }
     if (b.idx < 0 || b.dist > opt_.max_hamming) continue;
     if (b.best_level == b.second_level && b.dist > opt_.ratio * b.second) continue;
@@ -179,7 +179,7 @@ std::vector<std::pair<int, int>> Matcher::SearchForTriangulation(const KeyFrame&
   std::vector<int> match_of2(f2.size(), -1);
   for (size_t i = 0; i < f1.size(); ++i) {
     if (kf1.points[i] && !kf1.points[i]->bad) continue;
-    const cv::KeyPoint& k1 = f1.keypoints[i];
+    const FeaturePoint& k1 = f1.keypoints[i];
     // The epipolar line in image 2 of feature i: l2 = F12^T x1.
     const Eigen::Vector3d l2 = F12.transpose() * Eigen::Vector3d(k1.pt.x, k1.pt.y, 1);
     const double ln = std::sqrt(l2.x() * l2.x() + l2.y() * l2.y());
@@ -187,7 +187,7 @@ std::vector<std::pair<int, int>> Matcher::SearchForTriangulation(const KeyFrame&
     const uint8_t* d1 = f1.descriptors.ptr<uint8_t>(static_cast<int>(i));
     Best b;
     for (int j : free2) {
-      const cv::KeyPoint& k2 = f2.keypoints[j];
+      const FeaturePoint& k2 = f2.keypoints[j];
       if (std::abs(k2.octave - k1.octave) > 1) continue;
       const double dist_line = std::abs(l2.dot(Eigen::Vector3d(k2.pt.x, k2.pt.y, 1))) / ln;
       if (dist_line * dist_line > 3.84 * f2.level_sigma2[k2.octave]) continue;
@@ -228,7 +228,7 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
     Best b;
     for (int j : f.InArea(uv.x(), uv.y(), r, level - 1, level)) {
       if (!IsInlierObservation(cam_, f, j, pc)) continue;
-      b.Offer(j, DescriptorDistance(p->descriptor.ptr<uint8_t>(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
+      b.Offer(j, DescriptorDistance(p->descriptor.data(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
     }
     if (b.idx < 0 || b.dist > opt_.strict_hamming) continue;
     MapPoint* other = kf->points[b.idx];

@@ -96,7 +96,7 @@ int OptimizePose(const StereoCamera& cam, const PoseOptimizerOptions& opt, Frame
   for (size_t i = 0; i < frame->size(); ++i) {
     MapPoint* p = frame->points[i];
     if (!p || p->bad) continue;
-    const cv::KeyPoint& kp = f.keypoints[i];
+    const FeaturePoint& kp = f.keypoints[i];
     obs.push_back({static_cast<int>(i), p->p_w, kp.pt.x, kp.pt.y, f.u_right[i],
                    1.0 / f.level_scale[kp.octave]});
     frame->outlier[i] = false;

@@ -17,7 +17,7 @@ inline constexpr double kChi2Stereo = 7.815;  // 95%, 3 dof
 // front of the camera.
 inline double ObservationChi2(const StereoCamera& cam, const FrameFeatures& f, int idx, const Eigen::Vector3d& p_c) {
   if (p_c.z() <= 1e-4) return 1e9;
-  const cv::KeyPoint& kp = f.keypoints[idx];
+  const FeaturePoint& kp = f.keypoints[idx];
   const Eigen::Vector2d uv = cam.Project(p_c);
   double e2 = (uv - Eigen::Vector2d(kp.pt.x, kp.pt.y)).squaredNorm();
   if (f.u_right[idx] >= 0) {

@@ -194,6 +194,7 @@ SlamStats SlamSystem::Stats() const {
   s.map_points_freed = impl_->map.points_freed();
   s.keyframes_held = static_cast<int64_t>(impl_->map.keyframes().size());
   s.map_points_held = static_cast<int64_t>(impl_->map.points().size());
+  s.map_heap_bytes = impl_->map.HeapBytes();
   if (impl_->mapper) s.local_ba_ms = impl_->mapper->ba_ms();
   return s;
 }

@@ -73,6 +73,7 @@ struct SlamStats {
   int64_t map_points_freed = 0;     // culled map points freed
   int64_t keyframes_held = 0;       // keyframes allocated now (good, and culled but still held)
   int64_t map_points_held = 0;      // map points allocated now
+  size_t map_heap_bytes = 0;        // Map::HeapBytes(): what the map's objects hold now
 };
 
 class SlamSystem {

@@ -92,8 +92,10 @@ std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame
   auto f = std::make_shared<FrameFeatures>();
   const bool rgbd = settings_.input == "rgbd";
   const cv::Mat left = ToGrey(frame.left_rgb);
+  std::vector<cv::KeyPoint> lk;
   if (rgbd) {
-    extractor_.Extract(left, cv::Mat(), &f->keypoints, &f->descriptors);
+    extractor_.Extract(left, cv::Mat(), &lk, &f->descriptors);
+    f->keypoints = ToFeaturePoints(lk);
     f->u_right.assign(f->size(), -1.f);
     f->depth.assign(f->size(), -1.f);
     for (size_t i = 0; i < f->size(); ++i) {
@@ -111,9 +113,10 @@ std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame
     cv::Mat rd;
     // The right image's features on a second thread: the two extractions are independent.
     auto right_job = std::async(std::launch::async, [&] { right_extractor_.Extract(right, cv::Mat(), &rk, &rd); });
-    extractor_.Extract(left, cv::Mat(), &f->keypoints, &f->descriptors);
+    extractor_.Extract(left, cv::Mat(), &lk, &f->descriptors);
     right_job.get();
-    const auto sm = stereo_.Match(left, right, f->keypoints, f->descriptors, rk, rd, cam_.fx, cam_.bf / cam_.fx);
+    const auto sm = stereo_.Match(left, right, lk, f->descriptors, rk, rd, cam_.fx, cam_.bf / cam_.fx);
+    f->keypoints = ToFeaturePoints(lk);
     f->u_right.assign(f->size(), -1.f);
     f->depth.assign(f->size(), -1.f);
     for (size_t i = 0; i < f->size(); ++i) {
@@ -344,7 +347,7 @@ void Tracker::AddTemporaryPointsToLastFrame() {
       continue;
     }
     auto p = std::make_unique<MapPoint>(-1, T_w_c * f.Unproject(cam_, i), nullptr);
-    p->descriptor = f.descriptors.row(i);
+    p->SetDescriptor(f.descriptors, i);
     last_.points[i] = p.get();
     last_.outlier[i] = false;
     temporary_.push_back(std::move(p));
