@@ -251,7 +251,7 @@ size_t Map::HeapBytes() const {
     bytes += sizeof(KeyFrame) + VectorBytes(k->points) + k->covisible.size() * kTreeNodeBytes;
     if (k->features) bytes += FeatureBytes(*k->features);
   }
-  for (const auto& p : points_) bytes += sizeof(MapPoint) + p->observations.size() * kTreeNodeBytes;
+  for (const auto& p : points_) bytes += sizeof(MapPoint) + p->observations.capacity() * sizeof(std::pair<KeyFrame*, int>);
   return bytes;
 }
 

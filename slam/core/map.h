@@ -4,11 +4,14 @@
 // links may still hold them (the tracker's frames and local map, the mapper's queue and probation
 // list); Reclaim() frees the rest, so a long run's memory stays bounded. All access happens under
 // Map::mutex.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -29,6 +32,53 @@ struct KeyFrameIdLess {
 template <class V>
 using KeyFrameMap = std::map<KeyFrame*, V, KeyFrameIdLess>;
 
+// The same map kept as a vector sorted by keyframe id, for the many small ones (a map point's
+// few observations): 16 bytes an entry against a 48-byte tree node. Inserting or erasing moves
+// the entries after it and invalidates iterators.
+template <class V>
+class KeyFrameFlatMap {
+ public:
+  using value_type = std::pair<KeyFrame*, V>;
+  using iterator = typename std::vector<value_type>::iterator;
+  using const_iterator = typename std::vector<value_type>::const_iterator;
+
+  iterator begin() { return entries_.begin(); }
+  iterator end() { return entries_.end(); }
+  const_iterator begin() const { return entries_.begin(); }
+  const_iterator end() const { return entries_.end(); }
+  size_t size() const { return entries_.size(); }
+  bool empty() const { return entries_.empty(); }
+  size_t capacity() const { return entries_.capacity(); }
+  void clear() { entries_.clear(); }
+
+  iterator find(const KeyFrame* k) {
+    auto it = LowerBound(k);
+    return it != entries_.end() && it->first == k ? it : entries_.end();
+  }
+  const_iterator find(const KeyFrame* k) const { return const_cast<KeyFrameFlatMap*>(this)->find(k); }
+  size_t count(const KeyFrame* k) const { return find(k) != end() ? 1 : 0; }
+  const V& at(const KeyFrame* k) const {
+    auto it = find(k);
+    if (it == end()) throw std::out_of_range("KeyFrameFlatMap::at: no such keyframe");
+    return it->second;
+  }
+  // The value of `k`, inserted as V() at its place if absent.
+  V& operator[](KeyFrame* k) {
+    auto it = LowerBound(k);
+    if (it == entries_.end() || it->first != k) it = entries_.insert(it, value_type(k, V()));
+    return it->second;
+  }
+  iterator erase(const_iterator it) { return entries_.erase(it); }
+
+ private:
+  iterator LowerBound(const KeyFrame* k) {
+    return std::lower_bound(entries_.begin(), entries_.end(), k, [](const value_type& e, const KeyFrame* key) {
+      return KeyFrameIdLess()(e.first, key);
+    });
+  }
+  std::vector<value_type> entries_;
+};
+
 class MapPoint {
  public:
   MapPoint(int64_t id, const Eigen::Vector3d& p_w, KeyFrame* ref) : id(id), p_w(p_w), reference(ref) {}
@@ -36,7 +86,7 @@ class MapPoint {
   int64_t id;
   Eigen::Vector3d p_w;                     // position in world (m)
   KeyFrame* reference;                     // keyframe that created it
-  KeyFrameMap<int> observations;           // keyframe -> feature index (ordered by keyframe id)
+  KeyFrameFlatMap<int> observations;       // keyframe -> feature index (ordered by keyframe id)
   // The observation descriptor closest to all others (ORB: 32 bytes), a copy: a point outlives
   // the keyframe it was taken from.
   std::array<uint8_t, 32> descriptor{};
