@@ -3,8 +3,13 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cstring>
 #include <queue>
 #include <utility>
+
+#if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "BitWriter stores its 64-bit accumulator as bytes: it needs a little-endian machine"
+#endif
 
 namespace viqu::sim {
 namespace {
@@ -19,29 +24,42 @@ constexpr int kMaxCodeLengthBits = 7;  // the code-length code's limit (3-bit fi
 // The order in which the code-length code's lengths are sent (RFC 1951 3.2.7).
 constexpr int kCodeLengthOrder[19] = {16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15};
 
-// Least significant bit first, as deflate packs its bits.
+// Least significant bit first, as deflate packs its bits, into a buffer sized beforehand: each
+// flush stores 8 bytes at once and advances by the whole bytes written, so the buffer needs
+// 8 bytes of slack past the last byte it keeps (Reserve).
 class BitWriter {
  public:
-  explicit BitWriter(std::vector<uint8_t>* out) : out_(out) {}
-  void Put(uint32_t bits, int count) {
-    acc_ |= static_cast<uint64_t>(bits) << used_;
-    used_ += count;
-    if (used_ >= 32) {
-      for (int i = 0; i < 4; ++i) out_->push_back(static_cast<uint8_t>(acc_ >> (8 * i)));
-      acc_ >>= 32;
-      used_ -= 32;
-    }
+  explicit BitWriter(std::vector<uint8_t>* out) : out_(out), pos_(out->size()) {}
+  // Makes room for `bits` more bits.
+  void Reserve(size_t bits) {
+    const size_t need = pos_ + bits / 8 + 16;
+    if (out_->size() < need) out_->resize(std::max(need, out_->size() * 3 / 2));
   }
-  void Finish() {  // pads the last byte with zeros
-    while (used_ > 0) {
-      out_->push_back(static_cast<uint8_t>(acc_));
-      acc_ >>= 8;
-      used_ = std::max(0, used_ - 8);
-    }
+  // At most 63 bits may be pending at a Flush (after one, at most 7 are).
+  void Put(uint64_t bits, int count) {
+    acc_ |= bits << used_;
+    used_ += count;
+  }
+  void Flush() {
+    std::memcpy(out_->data() + pos_, &acc_, 8);  // little-endian: LSB first, as deflate wants
+    pos_ += static_cast<size_t>(used_ >> 3);
+    acc_ >>= (used_ & ~7);
+    used_ &= 7;
+  }
+  void PutFlushed(uint64_t bits, int count) {
+    Put(bits, count);
+    Flush();
+  }
+  // Pads the last byte with zeros and trims the buffer to the bytes written.
+  void Finish() {
+    Flush();
+    if (used_ > 0) out_->data()[pos_++] = static_cast<uint8_t>(acc_);
+    out_->resize(pos_);
   }
 
  private:
   std::vector<uint8_t>* out_;
+  size_t pos_;
   uint64_t acc_ = 0;
   int used_ = 0;
 };
@@ -97,8 +115,18 @@ std::vector<uint32_t> CanonicalCodes(const std::vector<uint8_t>& lengths) {
 }
 
 void PutBlock(const uint8_t* data, size_t n, bool final, BitWriter* w) {
+  // Four partial histograms: consecutive equal bytes would otherwise wait on each other's count.
+  uint32_t part[4][256] = {};
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    ++part[0][data[i]];
+    ++part[1][data[i + 1]];
+    ++part[2][data[i + 2]];
+    ++part[3][data[i + 3]];
+  }
+  for (; i < n; ++i) ++part[0][data[i]];
   std::vector<uint32_t> freq(kLiteralSymbols, 0);
-  for (size_t i = 0; i < n; ++i) ++freq[data[i]];
+  for (int s = 0; s < 256; ++s) freq[s] = part[0][s] + part[1][s] + part[2][s] + part[3][s];
   freq[kEndOfBlock] = 1;
   const std::vector<uint8_t> lit_len = LimitedCodeLengths(freq, kMaxCodeBits);
   const std::vector<uint32_t> lit_code = CanonicalCodes(lit_len);
@@ -112,15 +140,30 @@ void PutBlock(const uint8_t* data, size_t n, bool final, BitWriter* w) {
   const std::vector<uint8_t> cl_len = LimitedCodeLengths(cl_freq, kMaxCodeLengthBits);
   const std::vector<uint32_t> cl_code = CanonicalCodes(cl_len);
 
-  w->Put(final ? 1 : 0, 1);
-  w->Put(2, 2);                          // dynamic Huffman codes
-  w->Put(kLiteralSymbols - 257, 5);      // HLIT
-  w->Put(0, 5);                          // HDIST: one distance code
-  w->Put(19 - 4, 4);                     // HCLEN: all 19 code-length code lengths
-  for (int s : kCodeLengthOrder) w->Put(cl_len[s], 3);
-  for (uint8_t l : sent) w->Put(cl_code[l], cl_len[l]);
-  for (size_t i = 0; i < n; ++i) w->Put(lit_code[data[i]], lit_len[data[i]]);
-  w->Put(lit_code[kEndOfBlock], lit_len[kEndOfBlock]);
+  uint64_t bits = 0;
+  for (size_t s = 0; s < kLiteralSymbols; ++s) bits += static_cast<uint64_t>(freq[s]) * lit_len[s];
+  w->Reserve(bits + 17 + 19 * 3 + sent.size() * kMaxCodeLengthBits);
+  w->PutFlushed(final ? 1 : 0, 1);
+  w->PutFlushed(2, 2);                          // dynamic Huffman codes
+  w->PutFlushed(kLiteralSymbols - 257, 5);      // HLIT
+  w->PutFlushed(0, 5);                          // HDIST: one distance code
+  w->PutFlushed(19 - 4, 4);                     // HCLEN: all 19 code-length code lengths
+  for (int s : kCodeLengthOrder) w->PutFlushed(cl_len[s], 3);
+  for (uint8_t l : sent) w->PutFlushed(cl_code[l], cl_len[l]);
+  // Code and length of each byte in one word (code in the low 16 bits); three codes of at most
+  // 15 bits and the 7 left over from the last flush fit the accumulator.
+  uint32_t table[256];
+  for (int s = 0; s < 256; ++s) table[s] = lit_code[s] | (static_cast<uint32_t>(lit_len[s]) << 16);
+  i = 0;
+  for (; i + 3 <= n; i += 3) {
+    const uint32_t a = table[data[i]], b = table[data[i + 1]], c = table[data[i + 2]];
+    w->Put(a & 0xffff, static_cast<int>(a >> 16));
+    w->Put(b & 0xffff, static_cast<int>(b >> 16));
+    w->Put(c & 0xffff, static_cast<int>(c >> 16));
+    w->Flush();
+  }
+  for (; i < n; ++i) w->PutFlushed(table[data[i]] & 0xffff, static_cast<int>(table[data[i]] >> 16));
+  w->PutFlushed(lit_code[kEndOfBlock], lit_len[kEndOfBlock]);
 }
 
 }  // namespace
@@ -147,10 +190,9 @@ std::vector<uint8_t> LimitedCodeLengths(const std::vector<uint32_t>& freq, int m
 }
 
 void HuffmanOnlyZlib(const uint8_t* data, size_t n, std::vector<uint8_t>* out) {
-  out->clear();
-  out->reserve(n + n / 8 + 64);
-  out->push_back(0x78);  // CMF: deflate, 32 KiB window
-  out->push_back(0x01);  // FLG: fastest compression, no dictionary; (CMF * 256 + FLG) % 31 == 0
+  out->resize(2);  // the capacity stays: resize within it does not reallocate
+  (*out)[0] = 0x78;  // CMF: deflate, 32 KiB window
+  (*out)[1] = 0x01;  // FLG: fastest compression, no dictionary; (CMF * 256 + FLG) % 31 == 0
   BitWriter w(out);
   size_t pos = 0;
   do {
