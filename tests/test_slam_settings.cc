@@ -82,6 +82,9 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(ta.min_inliers, tb.min_inliers);
   EXPECT_EQ(ta.min_inliers_motion, tb.min_inliers_motion);
   EXPECT_EQ(ta.local_keyframes, tb.local_keyframes);
+  EXPECT_EQ(ta.spatial_keyframes, tb.spatial_keyframes);
+  EXPECT_EQ(ta.spatial_radius_m, tb.spatial_radius_m);
+  EXPECT_EQ(ta.spatial_max_angle_deg, tb.spatial_max_angle_deg);
   EXPECT_EQ(ta.huber_px, tb.huber_px);
   EXPECT_EQ(ta.pose_iterations, tb.pose_iterations);
   EXPECT_EQ(ta.keyframe_max_frames, tb.keyframe_max_frames);
@@ -160,7 +163,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 26 + 9 + 8 + 3 + 14 + 17;
+constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 14 + 17;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();

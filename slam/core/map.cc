@@ -255,6 +255,27 @@ size_t Map::HeapBytes() const {
   return bytes;
 }
 
+std::vector<KeyFrame*> Map::NearbyKeyFrames(const Eigen::Isometry3d& T_w_c, double radius_m, double max_angle_deg,
+                                             const std::set<KeyFrame*>& exclude, size_t max_count) const {
+  const Eigen::Vector3d centre = T_w_c.translation(), axis = T_w_c.linear().col(2);
+  const double max_d2 = radius_m * radius_m;
+  const double min_cos = std::cos(max_angle_deg * M_PI / 180.0);
+  std::vector<std::pair<double, KeyFrame*>> near;
+  for (const auto& k : keyframes_) {
+    if (k->bad || exclude.count(k.get())) continue;
+    const Eigen::Isometry3d T_w_k = k->T_c_w.inverse();
+    const double d2 = (T_w_k.translation() - centre).squaredNorm();
+    if (d2 > max_d2 || T_w_k.linear().col(2).dot(axis) < min_cos) continue;
+    near.emplace_back(d2, k.get());
+  }
+  std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first < b.first : a.second->id < b.second->id;
+  });
+  std::vector<KeyFrame*> out;
+  for (size_t i = 0; i < near.size() && i < max_count; ++i) out.push_back(near[i].second);
+  return out;
+}
+
 int Map::GoodKeyFrames() const {
   return static_cast<int>(std::count_if(keyframes_.begin(), keyframes_.end(), [](const auto& k) { return !k->bad; }));
 }

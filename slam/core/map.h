@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -163,6 +164,11 @@ class Map {
   const std::vector<std::unique_ptr<MapPoint>>& points() const { return points_; }
   int GoodKeyFrames() const;
   int GoodPoints() const;
+  // Good keyframes not in `exclude` whose camera centre lies within `radius_m` of the camera
+  // `T_w_c` and whose optical axis is within `max_angle_deg` of its, nearest first (ties by id),
+  // at most `max_count`.
+  std::vector<KeyFrame*> NearbyKeyFrames(const Eigen::Isometry3d& T_w_c, double radius_m, double max_angle_deg,
+                                         const std::set<KeyFrame*>& exclude, size_t max_count) const;
   // Heap bytes held by the keyframes and map points (held ones included), counted from their
   // sizes and the capacities of their containers; a tree node is counted at kTreeNodeBytes. An
   // account of where a run's memory goes, not a measurement of the allocator's use.

@@ -443,6 +443,18 @@ bool Tracker::TrackReferenceKeyFrame() {
   return inliers >= kMinPoseInliers;
 }
 
+void Tracker::AddSpatialKeyFrames(std::vector<KeyFrame*>* local, std::set<KeyFrame*>* in_local) const {
+  const TrackingSettings& ts = settings_.tracking;
+  if (ts.spatial_keyframes <= 0) return;
+  const std::vector<KeyFrame*> near =
+      map_->NearbyKeyFrames(cur_.T_c_w.inverse(), ts.spatial_radius_m, ts.spatial_max_angle_deg, *in_local,
+                            static_cast<size_t>(ts.spatial_keyframes));
+  for (KeyFrame* k : near) {
+    in_local->insert(k);
+    local->push_back(k);
+  }
+}
+
 int Tracker::TrackLocalMap() {
   // Local keyframes: those that see the frame's points, then their best neighbours.
   KeyFrameMap<int> counter;
@@ -474,6 +486,7 @@ int Tracker::TrackLocalMap() {
     }
   }
   if (local.empty() && reference_ && !reference_->bad) local.push_back(reference_);
+  AddSpatialKeyFrames(&local, &in_local);
   local_keyframes_ = local;
 
   std::set<MapPoint*> seen;

@@ -4,6 +4,7 @@
 // decision, and relocalisation when lost.
 #include <deque>
 #include <memory>
+#include <set>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -86,6 +87,9 @@ class Tracker {
   void MeasurePriorMiss(const Eigen::Isometry3d& predicted_T_c_w);
   bool TrackReferenceKeyFrame();
   int TrackLocalMap();
+  // Appends to the local keyframes up to tracking.spatial_keyframes others near the predicted
+  // camera (centre within spatial_radius_m, optical axis within spatial_max_angle_deg), nearest first.
+  void AddSpatialKeyFrames(std::vector<KeyFrame*>* local, std::set<KeyFrame*>* in_local) const;
   bool Relocalise();
   bool NeedKeyFrame(int inliers, LocalMapper* mapper) const;
   KeyFrame* CreateKeyFrame(LocalMapper* mapper);

@@ -78,6 +78,9 @@ void ReadTracking(YamlMapReader* m, TrackingSettings* t) {
   m->Integer("min_inliers", &t->min_inliers, kCount3);
   m->Integer("min_inliers_motion", &t->min_inliers_motion, kCount3);
   m->Integer("local_keyframes", &t->local_keyframes, kCount1);
+  m->Integer("spatial_keyframes", &t->spatial_keyframes, kCount0);
+  m->Number("spatial_radius_m", &t->spatial_radius_m, NumberRange::OpenClosed(0, 1000));
+  m->Number("spatial_max_angle_deg", &t->spatial_max_angle_deg, NumberRange::OpenClosed(0, 180));
   m->Number("huber_px", &t->huber_px, NumberRange::Positive());
   m->Integer("pose_iterations", &t->pose_iterations, NumberRange::Closed(1, 100));
   m->Integer("keyframe_max_frames", &t->keyframe_max_frames, kCount1);
@@ -261,6 +264,9 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitInt(out, "min_inliers", t.min_inliers);
   EmitInt(out, "min_inliers_motion", t.min_inliers_motion);
   EmitInt(out, "local_keyframes", t.local_keyframes);
+  EmitInt(out, "spatial_keyframes", t.spatial_keyframes);
+  EmitNumber(out, "spatial_radius_m", t.spatial_radius_m);
+  EmitNumber(out, "spatial_max_angle_deg", t.spatial_max_angle_deg);
   EmitNumber(out, "huber_px", t.huber_px);
   EmitInt(out, "pose_iterations", t.pose_iterations);
   EmitInt(out, "keyframe_max_frames", t.keyframe_max_frames);

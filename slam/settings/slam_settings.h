@@ -45,6 +45,11 @@ struct TrackingSettings {
   double prior_window_factor = 2;    // (ratio)
   int prior_window_frames = 20;      // (frames)
   double prior_window_min_px = 15;   // (px, level 0)
+  // Keyframes near the camera that covisibility does not reach (a place seen again after a loop)
+  // join the local map, nearest first, so that the old map is matched instead of mapped again.
+  int spatial_keyframes = 5;         // at most this many (count; 0: off)
+  double spatial_radius_m = 0.5;     // camera centres at most this far apart (m)
+  double spatial_max_angle_deg = 30; // optical axes at most this far apart (deg)
 };
 
 struct MappingSettings {
