@@ -259,13 +259,14 @@ std::vector<KeyFrame*> Map::NearbyKeyFrames(const Eigen::Isometry3d& T_w_c, doub
                                              const std::set<KeyFrame*>& exclude, size_t max_count) const {
   const Eigen::Vector3d centre = T_w_c.translation(), axis = T_w_c.linear().col(2);
   const double max_d2 = radius_m * radius_m;
+  const bool any_direction = max_angle_deg >= 180;  // (a dot product of opposite unit axes may round below -1)
   const double min_cos = std::cos(max_angle_deg * M_PI / 180.0);
   std::vector<std::pair<double, KeyFrame*>> near;
   for (const auto& k : keyframes_) {
     if (k->bad || exclude.count(k.get())) continue;
     const Eigen::Isometry3d T_w_k = k->T_c_w.inverse();
     const double d2 = (T_w_k.translation() - centre).squaredNorm();
-    if (d2 > max_d2 || T_w_k.linear().col(2).dot(axis) < min_cos) continue;
+    if (d2 > max_d2 || (!any_direction && T_w_k.linear().col(2).dot(axis) < min_cos)) continue;
     near.emplace_back(d2, k.get());
   }
   std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) {

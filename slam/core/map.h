@@ -52,11 +52,8 @@ class KeyFrameFlatMap {
   size_t capacity() const { return entries_.capacity(); }
   void clear() { entries_.clear(); }
 
-  iterator find(const KeyFrame* k) {
-    auto it = LowerBound(k);
-    return it != entries_.end() && it->first == k ? it : entries_.end();
-  }
-  const_iterator find(const KeyFrame* k) const { return const_cast<KeyFrameFlatMap*>(this)->find(k); }
+  iterator find(const KeyFrame* k) { return Find(entries_.begin(), entries_.end(), k); }
+  const_iterator find(const KeyFrame* k) const { return Find(entries_.begin(), entries_.end(), k); }
   size_t count(const KeyFrame* k) const { return find(k) != end() ? 1 : 0; }
   const V& at(const KeyFrame* k) const {
     auto it = find(k);
@@ -65,17 +62,21 @@ class KeyFrameFlatMap {
   }
   // The value of `k`, inserted as V() at its place if absent.
   V& operator[](KeyFrame* k) {
-    auto it = LowerBound(k);
+    auto it = LowerBound(entries_.begin(), entries_.end(), k);
     if (it == entries_.end() || it->first != k) it = entries_.insert(it, value_type(k, V()));
     return it->second;
   }
   iterator erase(const_iterator it) { return entries_.erase(it); }
 
  private:
-  iterator LowerBound(const KeyFrame* k) {
-    return std::lower_bound(entries_.begin(), entries_.end(), k, [](const value_type& e, const KeyFrame* key) {
-      return KeyFrameIdLess()(e.first, key);
-    });
+  template <class It>
+  static It LowerBound(It first, It last, const KeyFrame* k) {
+    return std::lower_bound(first, last, k, [](const value_type& e, const KeyFrame* key) { return KeyFrameIdLess()(e.first, key); });
+  }
+  template <class It>
+  static It Find(It first, It last, const KeyFrame* k) {
+    const It it = LowerBound(first, last, k);
+    return it != last && it->first == k ? it : last;
   }
   std::vector<value_type> entries_;
 };
@@ -165,8 +166,8 @@ class Map {
   int GoodKeyFrames() const;
   int GoodPoints() const;
   // Good keyframes not in `exclude` whose camera centre lies within `radius_m` of the camera
-  // `T_w_c` and whose optical axis is within `max_angle_deg` of its, nearest first (ties by id),
-  // at most `max_count`.
+  // `T_w_c` and whose optical axis is within `max_angle_deg` of its (180: any), nearest first
+  // (ties by id), at most `max_count`.
   std::vector<KeyFrame*> NearbyKeyFrames(const Eigen::Isometry3d& T_w_c, double radius_m, double max_angle_deg,
                                          const std::set<KeyFrame*>& exclude, size_t max_count) const;
   // Heap bytes held by the keyframes and map points (held ones included), counted from their

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -518,7 +519,6 @@ int Tracker::TrackLocalMap() {
 bool Tracker::Relocalise() {
   // Candidates: the most recent keyframes and those nearest the last tracked position (not the
   // pose dead-reckoned since, which drifts with every lost frame).
-  const Eigen::Vector3d last_center = last_good_T_c_w_.inverse().translation();
   std::vector<KeyFrame*> good;
   for (const auto& kf : map_->keyframes()) {
     if (!kf->bad) good.push_back(kf.get());
@@ -528,13 +528,11 @@ bool Tracker::Relocalise() {
   for (auto it = good.rbegin(); it != good.rend() && cands.size() < kRelocRecentKeyframes; ++it) {
     if (chosen.insert(*it).second) cands.push_back(*it);
   }
-  std::vector<KeyFrame*> by_distance = good;
-  std::sort(by_distance.begin(), by_distance.end(), [&](KeyFrame* a, KeyFrame* b) {
-    const double da = (a->Center() - last_center).squaredNorm(), db = (b->Center() - last_center).squaredNorm();
-    return da != db ? da < db : a->id < b->id;
-  });
-  for (size_t i = 0; i < by_distance.size() && cands.size() < kRelocCandidates; ++i) {
-    if (chosen.insert(by_distance[i]).second) cands.push_back(by_distance[i]);
+  if (cands.size() < kRelocCandidates) {
+    // Any distance, any viewing direction.
+    const std::vector<KeyFrame*> near = map_->NearbyKeyFrames(
+        last_good_T_c_w_.inverse(), std::numeric_limits<double>::infinity(), 180, chosen, kRelocCandidates - cands.size());
+    cands.insert(cands.end(), near.begin(), near.end());
   }
   for (KeyFrame* kf : cands) {
     cur_.ClearMatches();
