@@ -296,7 +296,8 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
       if (!frame.left_instance_id.empty()) sensors.segmentation.Apply(&frame);
       // Depth as a depth camera delivers it: quantised to TUM's 1/5000 m, so that a recorded
       // TUM dataset replays exactly as the live run saw it.
-      if (!frame.left_depth_m.empty()) sim::QuantiseDepth(&frame.left_depth_m, sim::TumRecorder::kDepthScale);
+      // The steps go to the recorders as they are (one conversion a frame).
+      const cv::Mat depth_steps = sim::QuantiseDepth(&frame.left_depth_m, sim::TumRecorder::kDepthScale);
       const GroundTruthState gt = world.GroundTruth();
       gt_out.Add(gt.T_w_cam);
       gt_cam.push_back(gt.T_w_cam);
@@ -304,11 +305,11 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
       last_p = gt.T_w_body.p_w_x;
       ++metrics.frames;
       if (recorder) {
-        recorder->AddFrame(frame);
+        recorder->AddFrame(frame, depth_steps);
         recorder->AddGroundTruth(gt);
       }
       if (tum_recorder) {
-        tum_recorder->AddFrame(frame);
+        tum_recorder->AddFrame(frame, depth_steps);
         tum_recorder->AddGroundTruth(gt);
       }
       // The frame goes to the estimator stage with the measurements before it; the renderer

@@ -11,7 +11,8 @@ cv::Mat DepthToSteps(const cv::Mat& depth_m, double steps_per_m);
 
 // Quantises CV_32F metric depth in place to steps of 1/steps_per_m m, with the values computed
 // exactly as a reader converting the 16-bit image back (convertTo with factor 1/steps_per_m)
-// gets them, so that a recorded depth PNG replays bit for bit.
-void QuantiseDepth(cv::Mat* depth_m, double steps_per_m);
+// gets them, so that a recorded depth PNG replays bit for bit. Returns the steps (DepthToSteps
+// of the input), which a recorder can write without converting again; empty for empty input.
+cv::Mat QuantiseDepth(cv::Mat* depth_m, double steps_per_m);
 
 }  // namespace viqu::sim

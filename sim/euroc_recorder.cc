@@ -168,17 +168,22 @@ void EurocRecorder::WriteImage(const std::string& folder, CsvStream* csv, int64_
   csv->file->Write(RowStamp(t_ns) + "," + name + "\n");
 }
 
-void EurocRecorder::AddFrame(const StereoFrame& frame) {
+void EurocRecorder::AddFrame(const StereoFrame& frame, const cv::Mat& depth_steps) {
   for (const cv::Mat* m : {&frame.left_rgb, &frame.right_rgb}) {
     if (m->type() != CV_8UC3) throw RunError("EurocRecorder: stereo images must be CV_8UC3 (RGB)");
   }
   // The frame's images are copied for the queue (the caller goes on with its buffers); the depth
-  // steps below are a new image already.
+  // steps below are a new image already, or the caller's, which it does not modify.
   WriteImage("cam0", &cam0_, frame.t_ns, frame.left_rgb.clone(), PngContent::kPhoto);
   WriteImage("cam1", &cam1_, frame.t_ns, frame.right_rgb.clone(), PngContent::kPhoto);
 
   if (rig_.camera.depth && !frame.left_depth_m.empty()) {
-    WriteImage("depth0", &depth0_, frame.t_ns, DepthToSteps(frame.left_depth_m, kDepthStepsPerM), PngContent::kFlat);
+    if (!depth_steps.empty() && (depth_steps.type() != CV_16U || depth_steps.size() != frame.left_depth_m.size())) {
+      throw RunError("EurocRecorder: depth steps must be CV_16U and the size of the depth image");
+    }
+    WriteImage("depth0", &depth0_, frame.t_ns,
+               depth_steps.empty() ? DepthToSteps(frame.left_depth_m, kDepthStepsPerM) : depth_steps,
+               PngContent::kFlat);
   }
   if (rig_.camera.segmentation && !frame.left_instance_id.empty()) {
     if (frame.left_instance_id.type() != CV_16U) throw RunError("EurocRecorder: instance ids must be CV_16U");

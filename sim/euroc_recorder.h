@@ -67,7 +67,9 @@ class EurocRecorder {
   EurocRecorder& operator=(const EurocRecorder&) = delete;
 
   // Left/right RGB (CV_8UC3, RGB order), and depth/segmentation when present and enabled.
-  void AddFrame(const StereoFrame& frame);
+  // `depth_steps`, when given, is the depth already in steps of 1/5000 m (sim::QuantiseDepth's
+  // result): it is written as is (and must not be modified afterwards) instead of converted.
+  void AddFrame(const StereoFrame& frame, const cv::Mat& depth_steps = cv::Mat());
   void AddImu(const ImuSample& sample);
   void AddJoints(const JointState& joints);
   // The touch sensors' reading and the controller's planned stance at an encoder sample.

@@ -63,11 +63,15 @@ void TumRecorder::WriteImage(const char* folder, ListStream* list, int64_t t_ns,
   list->file->Write(FormatSeconds(t_ns) + " " + name + "\n");
 }
 
-void TumRecorder::AddFrame(const StereoFrame& frame) {
+void TumRecorder::AddFrame(const StereoFrame& frame, const cv::Mat& depth_steps) {
   if (frame.left_rgb.type() != CV_8UC3) throw RunError("TumRecorder: the left image must be CV_8UC3 (RGB)");
   WriteImage("rgb", &rgb_, frame.t_ns, frame.left_rgb.clone(), PngContent::kPhoto);  // the caller reuses its buffer
   if (frame.left_depth_m.empty()) return;
-  WriteImage("depth", &depth_, frame.t_ns, DepthToSteps(frame.left_depth_m, kDepthScale), PngContent::kFlat);
+  if (!depth_steps.empty() && (depth_steps.type() != CV_16U || depth_steps.size() != frame.left_depth_m.size())) {
+    throw RunError("TumRecorder: depth steps must be CV_16U and the size of the depth image");
+  }
+  WriteImage("depth", &depth_, frame.t_ns,
+             depth_steps.empty() ? DepthToSteps(frame.left_depth_m, kDepthScale) : depth_steps, PngContent::kFlat);
 }
 
 void TumRecorder::AddGroundTruth(const GroundTruthState& state) {

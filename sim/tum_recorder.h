@@ -33,8 +33,10 @@ class TumRecorder {
   TumRecorder(const TumRecorder&) = delete;
   TumRecorder& operator=(const TumRecorder&) = delete;
 
-  // Left RGB (CV_8UC3, RGB order) and, when not empty, left depth (CV_32F, m).
-  void AddFrame(const StereoFrame& frame);
+  // Left RGB (CV_8UC3, RGB order) and, when not empty, left depth (CV_32F, m). `depth_steps`,
+  // when given, is the depth already in steps (sim::QuantiseDepth's result at kDepthScale): it
+  // is written as is (and must not be modified afterwards) instead of being converted again.
+  void AddFrame(const StereoFrame& frame, const cv::Mat& depth_steps = cv::Mat());
   // The left camera pose (state.T_w_cam) at state.t_ns.
   void AddGroundTruth(const GroundTruthState& state);
   // Writes camera.yaml, commits the lists and renames the folder into place.
