@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <queue>
+#include <stdexcept>
 #include <utility>
 
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
@@ -46,6 +47,7 @@ class BitWriter {
     acc_ >>= (used_ & ~7);
     used_ &= 7;
   }
+  int pending() const { return used_; }
   void PutFlushed(uint64_t bits, int count) {
     Put(bits, count);
     Flush();
@@ -114,6 +116,25 @@ std::vector<uint32_t> CanonicalCodes(const std::vector<uint8_t>& lengths) {
   return codes;
 }
 
+// Writes a dynamic-Huffman block header (RFC 1951 3.2.7) for the given literal/length and
+// distance code lengths, each code length sent by the code-length code (no repeat codes).
+void PutHeader(const std::vector<uint8_t>& lit_len, const std::vector<uint8_t>& dist_len, bool final, BitWriter* w) {
+  std::vector<uint8_t> sent(lit_len);
+  sent.insert(sent.end(), dist_len.begin(), dist_len.end());
+  std::vector<uint32_t> cl_freq(19, 0);
+  for (uint8_t l : sent) ++cl_freq[l];
+  const std::vector<uint8_t> cl_len = LimitedCodeLengths(cl_freq, kMaxCodeLengthBits);
+  const std::vector<uint32_t> cl_code = CanonicalCodes(cl_len);
+  w->Reserve(17 + 19 * 3 + sent.size() * kMaxCodeLengthBits);
+  w->PutFlushed(final ? 1 : 0, 1);
+  w->PutFlushed(2, 2);                                       // dynamic Huffman codes
+  w->PutFlushed(lit_len.size() - 257, 5);                    // HLIT
+  w->PutFlushed(dist_len.size() - 1, 5);                     // HDIST
+  w->PutFlushed(19 - 4, 4);                                  // HCLEN: all 19 code-length code lengths
+  for (int s : kCodeLengthOrder) w->PutFlushed(cl_len[s], 3);
+  for (uint8_t l : sent) w->PutFlushed(cl_code[l], cl_len[l]);
+}
+
 void PutBlock(const uint8_t* data, size_t n, bool final, BitWriter* w) {
   // Four partial histograms: consecutive equal bytes would otherwise wait on each other's count.
   uint32_t part[4][256] = {};
@@ -131,25 +152,12 @@ void PutBlock(const uint8_t* data, size_t n, bool final, BitWriter* w) {
   const std::vector<uint8_t> lit_len = LimitedCodeLengths(freq, kMaxCodeBits);
   const std::vector<uint32_t> lit_code = CanonicalCodes(lit_len);
 
-  // The code lengths to send: 257 literal/length ones, then one distance code of length 1 (no
-  // distance is ever used; RFC 1951 asks for one code of one bit then).
-  std::vector<uint8_t> sent(lit_len);
-  sent.push_back(1);
-  std::vector<uint32_t> cl_freq(19, 0);
-  for (uint8_t l : sent) ++cl_freq[l];
-  const std::vector<uint8_t> cl_len = LimitedCodeLengths(cl_freq, kMaxCodeLengthBits);
-  const std::vector<uint32_t> cl_code = CanonicalCodes(cl_len);
-
+  // One distance code of length 1: no distance is ever used; RFC 1951 asks for one code of one
+  // bit then.
+  PutHeader(lit_len, {1}, final, w);
   uint64_t bits = 0;
   for (size_t s = 0; s < kLiteralSymbols; ++s) bits += static_cast<uint64_t>(freq[s]) * lit_len[s];
-  w->Reserve(bits + 17 + 19 * 3 + sent.size() * kMaxCodeLengthBits);
-  w->PutFlushed(final ? 1 : 0, 1);
-  w->PutFlushed(2, 2);                          // dynamic Huffman codes
-  w->PutFlushed(kLiteralSymbols - 257, 5);      // HLIT
-  w->PutFlushed(0, 5);                          // HDIST: one distance code
-  w->PutFlushed(19 - 4, 4);                     // HCLEN: all 19 code-length code lengths
-  for (int s : kCodeLengthOrder) w->PutFlushed(cl_len[s], 3);
-  for (uint8_t l : sent) w->PutFlushed(cl_code[l], cl_len[l]);
+  w->Reserve(bits + kMaxCodeBits);
   // Code and length of each byte in one word (code in the low 16 bits); three codes of at most
   // 15 bits and the 7 left over from the last flush fit the accumulator.
   uint32_t table[256];
@@ -164,6 +172,145 @@ void PutBlock(const uint8_t* data, size_t n, bool final, BitWriter* w) {
   }
   for (; i < n; ++i) w->PutFlushed(table[data[i]] & 0xffff, static_cast<int>(table[data[i]] >> 16));
   w->PutFlushed(lit_code[kEndOfBlock], lit_len[kEndOfBlock]);
+}
+
+// --- Repeats at fixed distances ---------------------------------------------------------------
+// Deflate's length and distance symbols (RFC 1951 3.2.5): lengths 3-258 as symbols 257-285 with
+// extra bits, distances 1-32768 as codes 0-29 with extra bits.
+constexpr int kLengthSymbols = 286;  // literals, end of block, lengths
+constexpr int kDistanceSymbols = 30;
+constexpr int kMinMatch = 3, kMaxMatch = 258, kMaxDistance = 32768;
+constexpr int kLengthBase[29] = {3,  4,  5,  6,  7,  8,  9,  10, 11,  13,  15,  17,  19,  23, 27,
+                                 31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
+constexpr int kLengthExtra[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
+constexpr int kDistanceBase[30] = {1,   2,   3,   4,   5,   7,    9,    13,   17,   25,   33,   49,   65,    97,    129,
+                                   193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
+constexpr int kDistanceExtra[30] = {0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
+
+// Symbol, extra-bit count and extra value of a length or a distance.
+struct SymbolWithExtra {
+  int symbol = 0, extra_bits = 0;
+  uint32_t extra = 0;
+};
+SymbolWithExtra OfLength(int length) {
+  int c = 28;
+  while (kLengthBase[c] > length) --c;
+  return {257 + c, kLengthExtra[c], static_cast<uint32_t>(length - kLengthBase[c])};
+}
+SymbolWithExtra OfDistance(int distance) {
+  int c = 29;
+  while (kDistanceBase[c] > distance) --c;
+  return {c, kDistanceExtra[c], static_cast<uint32_t>(distance - kDistanceBase[c])};
+}
+
+// OfLength for every length, computed once.
+const std::vector<SymbolWithExtra>& LengthTable() {
+  static const std::vector<SymbolWithExtra> table = [] {
+    std::vector<SymbolWithExtra> t(kMaxMatch + 1);
+    for (int len = kMinMatch; len <= kMaxMatch; ++len) t[len] = OfLength(len);
+    return t;
+  }();
+  return table;
+}
+
+// How many bytes from `a` equal those from `b` (at most `limit`), eight at a time.
+inline size_t MatchLength(const uint8_t* a, const uint8_t* b, size_t limit) {
+  size_t k = 0;
+  while (k + 8 <= limit) {
+    uint64_t x, y;
+    std::memcpy(&x, a + k, 8);
+    std::memcpy(&y, b + k, 8);
+    if (x != y) return k + static_cast<size_t>(__builtin_ctzll(x ^ y) >> 3);  // little-endian
+    k += 8;
+  }
+  while (k < limit && a[k] == b[k]) ++k;
+  return k;
+}
+
+// One block of literals and repeats: the tokens are found first (greedy, the longest repeat at
+// the candidate distances, the first candidate on a tie), then coded with this block's codes.
+void PutRepeatBlock(const uint8_t* data, size_t begin, size_t end, bool final, const std::vector<int>& distances,
+                    std::vector<uint32_t>* tokens, BitWriter* w) {
+  std::vector<uint32_t> lit_freq(kLengthSymbols, 0), dist_freq(kDistanceSymbols, 0);
+  std::vector<SymbolWithExtra> dist_sym;
+  for (int d : distances) dist_sym.push_back(OfDistance(d));
+  const SymbolWithExtra* length_sym = LengthTable().data();
+  // A token: a byte (< 256), or 0x80000000 | candidate << 16 | length.
+  tokens->clear();
+  size_t i = begin;
+  while (i < end) {
+    const size_t limit = std::min<size_t>(kMaxMatch, end - i);
+    size_t best = 0, best_c = 0;
+    if (limit >= kMinMatch) {
+      for (size_t c = 0; c < distances.size(); ++c) {
+        const size_t d = static_cast<size_t>(distances[c]);
+        if (d > i) continue;  // the window holds what came before, in earlier blocks too
+        const size_t len = MatchLength(data + i, data + i - d, limit);
+        if (len > best) {
+          best = len;
+          best_c = c;
+        }
+      }
+    }
+    if (best >= kMinMatch) {
+      tokens->push_back(0x80000000u | static_cast<uint32_t>(best_c << 16) | static_cast<uint32_t>(best));
+      ++lit_freq[length_sym[best].symbol];
+      ++dist_freq[dist_sym[best_c].symbol];
+      i += best;
+    } else {
+      tokens->push_back(data[i]);
+      ++lit_freq[data[i]];
+      ++i;
+    }
+  }
+  lit_freq[kEndOfBlock] = 1;
+  const std::vector<uint8_t> lit_len = LimitedCodeLengths(lit_freq, kMaxCodeBits);
+  const std::vector<uint32_t> lit_code = CanonicalCodes(lit_len);
+  const std::vector<uint8_t> dist_len = LimitedCodeLengths(dist_freq, kMaxCodeBits);
+  const std::vector<uint32_t> dist_code = CanonicalCodes(dist_len);
+  PutHeader(lit_len, dist_len, final, w);
+
+  // Per length: its symbol's code and length, then its extra bits, as one put of at most
+  // 15 + 5 bits; per candidate distance the same, at most 15 + 13 bits.
+  struct Coded {
+    uint32_t bits;
+    int count;
+  };
+  std::vector<Coded> length_coded(kMaxMatch + 1), dist_coded(distances.size());
+  for (int len = kMinMatch; len <= kMaxMatch; ++len) {
+    const SymbolWithExtra& s = length_sym[len];
+    length_coded[len] = {lit_code[s.symbol] | (s.extra << lit_len[s.symbol]), lit_len[s.symbol] + s.extra_bits};
+  }
+  for (size_t c = 0; c < distances.size(); ++c) {
+    const SymbolWithExtra& s = dist_sym[c];
+    dist_coded[c] = {dist_code[s.symbol] | (s.extra << dist_len[s.symbol]), dist_len[s.symbol] + s.extra_bits};
+  }
+  w->Reserve(tokens->size() * 48 + kMaxCodeBits);
+  for (const uint32_t t : *tokens) {
+    // At most 15 bits pending before a token: a literal (15 bits) or a repeat (20 + 28 bits)
+    // fits the accumulator.
+    if (t < 256) {
+      w->Put(lit_code[t], lit_len[t]);
+    } else {
+      const Coded& l = length_coded[t & 0xffff];
+      const Coded& d = dist_coded[(t >> 16) & 0x7fff];
+      w->Put(l.bits, l.count);
+      w->Put(d.bits, d.count);
+    }
+    if (w->pending() > 15) w->Flush();
+  }
+  w->PutFlushed(lit_code[kEndOfBlock], lit_len[kEndOfBlock]);
+}
+
+void PutZlibHeader(std::vector<uint8_t>* out) {
+  out->resize(2);  // the capacity stays: resize within it does not reallocate
+  (*out)[0] = 0x78;  // CMF: deflate, 32 KiB window
+  (*out)[1] = 0x01;  // FLG: fastest compression, no dictionary; (CMF * 256 + FLG) % 31 == 0
+}
+
+void PutAdler(const uint8_t* data, size_t n, std::vector<uint8_t>* out) {
+  const uLong adler = adler32(adler32(0, nullptr, 0), data, static_cast<uInt>(n));
+  for (int i = 3; i >= 0; --i) out->push_back(static_cast<uint8_t>(adler >> (8 * i)));
 }
 
 }  // namespace
@@ -190,9 +337,7 @@ std::vector<uint8_t> LimitedCodeLengths(const std::vector<uint32_t>& freq, int m
 }
 
 void HuffmanOnlyZlib(const uint8_t* data, size_t n, std::vector<uint8_t>* out) {
-  out->resize(2);  // the capacity stays: resize within it does not reallocate
-  (*out)[0] = 0x78;  // CMF: deflate, 32 KiB window
-  (*out)[1] = 0x01;  // FLG: fastest compression, no dictionary; (CMF * 256 + FLG) % 31 == 0
+  PutZlibHeader(out);
   BitWriter w(out);
   size_t pos = 0;
   do {
@@ -201,8 +346,25 @@ void HuffmanOnlyZlib(const uint8_t* data, size_t n, std::vector<uint8_t>* out) {
     pos += len;
   } while (pos < n);
   w.Finish();
-  const uLong adler = adler32(adler32(0, nullptr, 0), data, static_cast<uInt>(n));
-  for (int i = 3; i >= 0; --i) out->push_back(static_cast<uint8_t>(adler >> (8 * i)));
+  PutAdler(data, n, out);
+}
+
+void RepeatZlib(const uint8_t* data, size_t n, const std::vector<int>& distances, std::vector<uint8_t>* out) {
+  if (distances.empty() || distances.size() > 0x7fff) throw std::invalid_argument("RepeatZlib: 1 to 32767 distances");
+  for (int d : distances) {
+    if (d < 1 || d > kMaxDistance) throw std::invalid_argument("RepeatZlib: distances must be in [1, 32768]");
+  }
+  PutZlibHeader(out);
+  BitWriter w(out);
+  std::vector<uint32_t> tokens;
+  size_t pos = 0;
+  do {
+    const size_t len = std::min(kBlockBytes, n - pos);
+    PutRepeatBlock(data, pos, pos + len, pos + len == n, distances, &tokens, &w);
+    pos += len;
+  } while (pos < n);
+  w.Finish();
+  PutAdler(data, n, out);
 }
 
 }  // namespace viqu::sim

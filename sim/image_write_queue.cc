@@ -1,5 +1,9 @@
 #include "sim/image_write_queue.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include "common/errors.h"
 
 namespace viqu::sim {
@@ -36,6 +40,9 @@ void ImageWriteQueue::Drain() {
 }
 
 void ImageWriteQueue::Work() {
+  // Lowest priority for this thread only (a failure leaves it at the default: nothing else
+  // depends on it).
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19);
   PngEncoder encoder;  // its buffers serve every image of the queue
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {

@@ -15,8 +15,8 @@ namespace viqu::sim {
 enum class PngContent {
   kPhoto,  // camera images: every byte a literal, Huffman-coded per block (sim/huffman_deflate.h;
            // sensor noise leaves few repeated strings to find)
-  kFlat,   // label and depth images: deflate's string matching at its fastest level (smooth
-           // surfaces give runs of equal differences)
+  kFlat,   // label and depth images: literals and repeats at the byte, pixel and row before
+           // (sim/huffman_deflate.h RepeatZlib; flat areas and smooth surfaces repeat there)
 };
 
 // Encodes images one after another with buffers it keeps: an encoder that stays (one per writer

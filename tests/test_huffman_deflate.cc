@@ -1,6 +1,9 @@
-// The literal-only deflate coder of the recordings, decoded by zlib's own inflater.
+// The deflate coders of the recordings (literal-only, and literals with repeats at fixed
+// distances), decoded by zlib's own inflater.
+#include <cstdio>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -93,6 +96,72 @@ TEST(HuffmanDeflate, ALoneSymbolGetsAPartner) {
   EXPECT_EQ(len[8], 1);
   EXPECT_EQ(len[0], 1);
   EXPECT_EQ(std::accumulate(len.begin(), len.end(), 0), 2);
+}
+
+std::vector<uint8_t> DeflateRepeats(const std::vector<uint8_t>& data, const std::vector<int>& distances) {
+  std::vector<uint8_t> z = {9, 9};
+  RepeatZlib(data.data(), data.size(), distances, &z);
+  return z;
+}
+
+void ExpectRepeatRoundTrip(const std::vector<uint8_t>& data, const std::vector<int>& distances) {
+  EXPECT_EQ(Inflate(DeflateRepeats(data, distances), data.size()), data);
+}
+
+TEST(RepeatDeflate, RoundTripsEveryKindOfInput) {
+  std::mt19937 rng(5);
+  std::vector<uint8_t> random(200000);
+  for (uint8_t& b : random) b = static_cast<uint8_t>(rng());
+  ExpectRepeatRoundTrip(random, {1, 2, 1281});
+  ExpectRepeatRoundTrip({}, {1});
+  ExpectRepeatRoundTrip({7}, {1});
+  ExpectRepeatRoundTrip({7, 7}, {1});
+  ExpectRepeatRoundTrip({7, 7, 7, 7, 7}, {1});                              // a run shorter than a repeat's minimum + 1
+  ExpectRepeatRoundTrip(std::vector<uint8_t>(300000, 0), {1});              // runs longer than 258, across blocks
+  ExpectRepeatRoundTrip(std::vector<uint8_t>(1000, 3), {32768, 1});         // a distance longer than the input
+  // Every length from 3 to 258 (each symbol and extra-bit value) at every kind of distance.
+  std::vector<uint8_t> lengths;
+  for (int len = 1; len <= 260; ++len) {
+    lengths.push_back(static_cast<uint8_t>(rng()));
+    lengths.insert(lengths.end(), len, lengths.back());
+  }
+  ExpectRepeatRoundTrip(lengths, {1});
+  ExpectRepeatRoundTrip(lengths, {2, 5, 1, 300, 32768});
+}
+
+// Images after a PNG row filter repeat at the row length (edges of labels) and at the pixel size
+// (16-bit values): found there, they compress far below the literal coder, and the stream still
+// decodes when a repeat reaches into the block before.
+TEST(RepeatDeflate, FindsRepeatsOfRowsAndPixels) {
+  const size_t row = 1281, rows = 400;  // a 640-pixel 16-bit image's filtered rows
+  std::mt19937 rng(9);
+  std::vector<uint8_t> line(row);
+  for (uint8_t& b : line) b = static_cast<uint8_t>(rng() % 4);
+  std::vector<uint8_t> image;
+  for (size_t r = 0; r < rows; ++r) {
+    if (r % 50 == 0) line[rng() % row] ^= 1;  // now and then a row changes
+    image.insert(image.end(), line.begin(), line.end());
+  }
+  const std::vector<uint8_t> with_rows = DeflateRepeats(image, {1, 2, static_cast<int>(row)});
+  EXPECT_EQ(Inflate(with_rows, image.size()), image);
+  // Measured 41x smaller than literals (3.4 against 143 KB).
+  EXPECT_LT(with_rows.size(), Deflate(image).size() / 20) << "rows repeat: a few repeats a row";
+  // 16-bit samples of a slope: high byte 0, the low byte (the step to the left) changing every
+  // 200 pixels. No byte repeats the one before it; each pixel repeats the one before.
+  std::vector<uint8_t> pairs;
+  for (int i = 0; i < 100000; ++i) pairs.insert(pairs.end(), {0, static_cast<uint8_t>(3 + (i / 200) % 3)});
+  const std::vector<uint8_t> with_pixels = DeflateRepeats(pairs, {1, 2});
+  EXPECT_EQ(Inflate(with_pixels, pairs.size()), pairs);
+  const size_t bytes_only = DeflateRepeats(pairs, {1}).size();
+  std::printf("slope: %zu bytes with pixel repeats, %zu with byte runs only\n", with_pixels.size(), bytes_only);
+  EXPECT_LT(with_pixels.size(), bytes_only / 10);
+}
+
+TEST(RepeatDeflate, RejectsDistancesOutsideTheWindow) {
+  const std::vector<uint8_t> data(10, 1);
+  EXPECT_THROW(DeflateRepeats(data, {}), std::invalid_argument);
+  EXPECT_THROW(DeflateRepeats(data, {0}), std::invalid_argument);
+  EXPECT_THROW(DeflateRepeats(data, {32769}), std::invalid_argument);
 }
 
 }  // namespace
