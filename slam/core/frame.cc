@@ -35,6 +35,12 @@ void FrameFeatures::BuildGrid(int width, int height) {
 
 std::vector<int> FrameFeatures::InArea(double u, double v, double radius, int min_level, int max_level) const {
   std::vector<int> out;
+  InArea(u, v, radius, min_level, max_level, &out);
+  return out;
+}
+
+void FrameFeatures::InArea(double u, double v, double radius, int min_level, int max_level, std::vector<int>* out) const {
+  out->clear();
   const int x0 = std::max(0, static_cast<int>(std::floor((u - radius) / kCellPx)));
   const int x1 = std::min(grid_cols - 1, static_cast<int>(std::floor((u + radius) / kCellPx)));
   const int y0 = std::max(0, static_cast<int>(std::floor((v - radius) / kCellPx)));
@@ -49,11 +55,10 @@ std::vector<int> FrameFeatures::InArea(double u, double v, double radius, int mi
         if (min_level >= 0 && kp.octave < min_level) continue;
         if (max_level >= 0 && kp.octave > max_level) continue;
         const double du = kp.pt.x - u, dv = kp.pt.y - v;
-        if (du * du + dv * dv <= r2) out.push_back(i);
+        if (du * du + dv * dv <= r2) out->push_back(i);
       }
     }
   }
-  return out;
 }
 
 void FrameFeatures::LabelObjects(const cv::Mat& instance_id) {

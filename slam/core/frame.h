@@ -49,6 +49,8 @@ struct FrameFeatures {
   void BuildGrid(int width, int height);
   // Features within `radius` px of (u, v) whose level is in [min_level, max_level] (-1: any).
   std::vector<int> InArea(double u, double v, double radius, int min_level = -1, int max_level = -1) const;
+  // The same into `out` (cleared first): a caller that keeps one vector allocates once.
+  void InArea(double u, double v, double radius, int min_level, int max_level, std::vector<int>* out) const;
   // Sets `object` from a CV_16U instance image of the image size (empty: every feature 0).
   void LabelObjects(const cv::Mat& instance_id);
   // The features whose `keep` entry is true, in order, with their grid rebuilt.

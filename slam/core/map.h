@@ -99,6 +99,10 @@ class MapPoint {
   int64_t first_keyframe_id = 0;
   uint16_t object = 0;                     // segmentation instance of the feature that created it (0 = none)
   bool bad = false;
+  // The tracker's own bookkeeping (read and written by the tracking thread only): the index of
+  // the last frame whose local map took this point, so that gathering the local map needs no
+  // set of pointers (thousands of tree nodes a frame, which fragmented the heap over long runs).
+  int64_t local_map_frame = -1;
 
   // Copies row `row` of `descriptors` (CV_8U, 32 bytes a row) into `descriptor`.
   void SetDescriptor(const cv::Mat& descriptors, int row);

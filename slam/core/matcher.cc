@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
 
 #include "slam/core/map.h"
 #include "slam/core/reprojection_error.h"
@@ -62,6 +61,7 @@ bool PredictView(const StereoCamera& cam, const MapPoint& p, const Eigen::Isomet
 int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) const {
   const FrameFeatures& f = *cur->features;
   int matches = 0;
+  std::vector<int> cand;
   for (size_t i = 0; i < last.size(); ++i) {
     MapPoint* p = last.points[i];
     if (!p || p->bad || last.outlier[i]) continue;
@@ -72,7 +72,7 @@ int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) co
     const int level = last.features->keypoints[i].octave;
     const double r = radius * f.level_scale[level];
     const int nl = static_cast<int>(f.level_scale.size());
-    const auto cand = f.InArea(uv.x(), uv.y(), r, std::max(0, level - 1), std::min(nl - 1, level + 1));
+    f.InArea(uv.x(), uv.y(), r, std::max(0, level - 1), std::min(nl - 1, level + 1), &cand);
     Best b;
     const double ur = cam_.ProjectRight(pc);
     for (int j : cand) {
@@ -92,13 +92,17 @@ int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) co
 int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radius, Frame* cur, bool count_visible) const {
   const FrameFeatures& f = *cur->features;
   const Eigen::Vector3d center = cur->Center();
-  std::set<const MapPoint*> already;
+  // The frame's matched points, sorted for binary search (a tree of them cost a node allocation
+  // each and a pointer chase per look-up).
+  std::vector<const MapPoint*> already;
   for (size_t i = 0; i < cur->size(); ++i) {
-    if (cur->points[i] && !cur->outlier[i]) already.insert(cur->points[i]);
+    if (cur->points[i] && !cur->outlier[i]) already.push_back(cur->points[i]);
   }
+  std::sort(already.begin(), already.end());
   int matches = 0;
+  std::vector<int> cand;
   for (MapPoint* p : points) {
-    if (p->bad || already.count(p)) continue;
+    if (p->bad || std::binary_search(already.begin(), already.end(), p)) continue;
     View v;
     if (!PredictView(cam_, *p, cur->T_c_w, center, f, &v)) continue;
     if (count_visible) ++p->visible;
@@ -107,7 +111,7 @@ int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radi
     const int level = v.level;
     // Wider windows when the view is oblique.
     const double r = radius * (v.view_cos > 0.998 ? 1.0 : 1.5) * f.level_scale[level];  // ORB-SLAM's: beyond 3.6 deg
-    const auto cand = f.InArea(uv.x(), uv.y(), r, level - 1, level);
+    f.InArea(uv.x(), uv.y(), r, level - 1, level, &cand);
     Best b;
     const double ur = cam_.ProjectRight(pc);
     for (int j : cand) {
@@ -217,6 +221,7 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
   const FrameFeatures& f = *kf->features;
   const Eigen::Vector3d center = kf->Center();
   int fused = 0;
+  std::vector<int> cand;
   for (MapPoint* p : points) {
     if (!p || p->bad || p->observations.count(kf)) continue;
     View v;
@@ -226,7 +231,8 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
     const int level = v.level;
     const double r = radius * f.level_scale[level];
     Best b;
-    for (int j : f.InArea(uv.x(), uv.y(), r, level - 1, level)) {
+    f.InArea(uv.x(), uv.y(), r, level - 1, level, &cand);
+    for (int j : cand) {
       if (!IsInlierObservation(cam_, f, j, pc)) continue;
       b.Offer(j, DescriptorDistance(p->descriptor.data(), f.descriptors.ptr<uint8_t>(j)), f.keypoints[j].octave);
     }

@@ -490,11 +490,13 @@ int Tracker::TrackLocalMap() {
   AddSpatialKeyFrames(&local, &in_local);
   local_keyframes_ = local;
 
-  std::set<MapPoint*> seen;
   local_points_.clear();
   for (KeyFrame* kf : local) {
     for (MapPoint* p : kf->points) {
-      if (p && !p->bad && seen.insert(p).second) local_points_.push_back(p);
+      if (p && !p->bad && p->local_map_frame != frame_index_) {
+        p->local_map_frame = frame_index_;
+        local_points_.push_back(p);
+      }
     }
   }
   for (size_t i = 0; i < cur_.size(); ++i) {
