@@ -77,10 +77,32 @@ ObjectSnapshot DynamicObjects::Snapshot(int64_t t_ns, const FrameFeatures& f, ui
     by_depth.emplace_back(f.depth[i], static_cast<int>(i));
   }
   std::sort(by_depth.begin(), by_depth.end());
+  const float band = static_cast<float>(settings_.adaptive.foreground_band_m);
+  // Stereo can put a cluster of the object's features far in front of it: a person's two legs
+  // carry the same texture, and a left-right match across them gives a disparity 100 px too
+  // large (depth 0.11 m for legs at 0.66 m, standing_then_walking). When such a cluster holds a
+  // quarter of the features it becomes the quartile below and the snapshot keeps only it, a
+  // false half-metre motion. So features nearer by more than the band than the densest depth
+  // band of the object (the window of that width holding most features, the nearest on a tie)
+  // are dropped first.
+  if (!by_depth.empty()) {
+    size_t best_start = 0, best_count = 0;
+    for (size_t lo = 0, hi = 0; lo < by_depth.size(); ++lo) {
+      while (hi < by_depth.size() && by_depth[hi].first <= by_depth[lo].first + band) ++hi;
+      if (hi - lo > best_count) {
+        best_count = hi - lo;
+        best_start = lo;
+      }
+    }
+    const float min_z = by_depth[best_start].first - band;
+    size_t first = 0;
+    while (first < by_depth.size() && by_depth[first].first < min_z) ++first;
+    by_depth.erase(by_depth.begin(), by_depth.begin() + static_cast<std::ptrdiff_t>(first));
+  }
   // A mask is loose (dilated, jittered): background seen past the object's edges falls inside it
   // and, being static, would match perfectly over time. Keep the object's own depth band.
   if (!by_depth.empty()) {
-    const float max_z = by_depth[by_depth.size() / 4].first + static_cast<float>(settings_.adaptive.foreground_band_m);
+    const float max_z = by_depth[by_depth.size() / 4].first + band;
     while (!by_depth.empty() && by_depth.back().first > max_z) by_depth.pop_back();
   }
   if (by_depth.size() > kMaxSnapshotPoints) by_depth.resize(kMaxSnapshotPoints);

@@ -88,7 +88,9 @@ struct AdaptiveDynamicSettings {
   int interior_px = 6;               // features nearer than this to the mask's edge are not judged: corners on
                                      // the silhouette mix the object with the background behind it (px)
   double foreground_band_m = 0.3;    // features deeper than the object's first depth quartile plus this are
-                                     // background seen through the loose mask, not the object (m)
+                                     // background seen through the loose mask, not the object; those nearer
+                                     // than its densest band of this width by more than this are stereo
+                                     // mismatches (m)
   int max_hamming = 50;              // descriptor distance for matching an object's features over time (bits)
   double static_pose_min_share = 0.2;  // movable objects carry this share of inliers: judge with a pose from the rest (ratio)
 };
