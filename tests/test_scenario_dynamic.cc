@@ -148,8 +148,9 @@ TEST(DynamicScenarios, StandingCrowd) {
   const double ate_before_loss = AteBefore(adaptive, first_lost_s);
   std::printf("standing_crowd adaptive: first lost frame at %.2f s, ATE before it %.4f m\n", first_lost_s, ate_before_loss);
   EXPECT_GE(first_lost_s, 30.0);                              // measured 32.85 s
-  EXPECT_LE(ate_before_loss, 0.025);                          // measured 12.4 mm
-  EXPECT_LE(adaptive.ate_m(), 0.26 * semantic.ate_m());       // measured 0.099 (95.2 / 963.4 mm); target 0.8
+  EXPECT_LE(ate_before_loss, 0.025);                          // measured 12.4 mm, 12.9 mm since session 13
+  EXPECT_LE(adaptive.ate_m(), 0.26 * semantic.ate_m());       // measured 0.099 (95.2 / 963.4 mm), 0.245 (237.7 /
+                                                              // 971.0 mm) since session 13 or earlier; target 0.8
   EXPECT_LE(adaptive.lost(), 40);                             // measured 20
   EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.95);   // measured 1.00; target 0.90
   EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.55);         // measured 0.79; target 0.95, not met
