@@ -1,6 +1,7 @@
 #include "sim/depth_quantisation.h"
 
 #include <cstdint>
+#include <string>
 
 #include "common/errors.h"
 
@@ -33,6 +34,14 @@ cv::Mat QuantiseDepth(cv::Mat* depth_m, double steps_per_m) {
   cv::Mat steps = DepthToSteps(*depth_m, steps_per_m);
   steps.convertTo(*depth_m, CV_32F, 1.0 / steps_per_m);
   return steps;
+}
+
+cv::Mat DepthStepsToWrite(const cv::Mat& depth_m, const cv::Mat& given, double steps_per_m, const char* who) {
+  if (given.empty()) return DepthToSteps(depth_m, steps_per_m);
+  if (given.type() != CV_16U || given.size() != depth_m.size()) {
+    throw RunError(std::string(who) + ": depth steps must be CV_16U and the size of the depth image");
+  }
+  return given;
 }
 
 }  // namespace viqu::sim

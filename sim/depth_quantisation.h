@@ -15,4 +15,9 @@ cv::Mat DepthToSteps(const cv::Mat& depth_m, double steps_per_m);
 // of the input), which a recorder can write without converting again; empty for empty input.
 cv::Mat QuantiseDepth(cv::Mat* depth_m, double steps_per_m);
 
+// The steps a recorder writes for `depth_m`: `given` (QuantiseDepth's result, passed on by the
+// caller) when not empty, else DepthToSteps(depth_m, steps_per_m). Throws RunError naming `who`
+// when `given` is not CV_16U of the depth image's size.
+cv::Mat DepthStepsToWrite(const cv::Mat& depth_m, const cv::Mat& given, double steps_per_m, const char* who);
+
 }  // namespace viqu::sim

@@ -178,12 +178,8 @@ void EurocRecorder::AddFrame(const StereoFrame& frame, const cv::Mat& depth_step
   WriteImage("cam1", &cam1_, frame.t_ns, frame.right_rgb.clone(), PngContent::kPhoto);
 
   if (rig_.camera.depth && !frame.left_depth_m.empty()) {
-    if (!depth_steps.empty() && (depth_steps.type() != CV_16U || depth_steps.size() != frame.left_depth_m.size())) {
-      throw RunError("EurocRecorder: depth steps must be CV_16U and the size of the depth image");
-    }
     WriteImage("depth0", &depth0_, frame.t_ns,
-               depth_steps.empty() ? DepthToSteps(frame.left_depth_m, kDepthStepsPerM) : depth_steps,
-               PngContent::kFlat);
+               DepthStepsToWrite(frame.left_depth_m, depth_steps, kDepthStepsPerM, "EurocRecorder"), PngContent::kFlat);
   }
   if (rig_.camera.segmentation && !frame.left_instance_id.empty()) {
     if (frame.left_instance_id.type() != CV_16U) throw RunError("EurocRecorder: instance ids must be CV_16U");

@@ -86,7 +86,7 @@ const std::string& PngEncoder::Encode(const cv::Mat& image, PngContent content) 
     const int pixel = bytes_per_pixel, row = static_cast<int>(row_bytes + 1);
     std::vector<int> distances = {1};
     if (pixel != 1) distances.push_back(pixel);
-    if (row <= 32768 && row != 1 && row != pixel) distances.push_back(row);
+    if (row <= 32768 && row != pixel) distances.push_back(row);  // row > 1: it holds the filter byte
     RepeatZlib(raw_.data(), raw_.size(), distances, &compressed_);
   }
 

@@ -67,11 +67,8 @@ void TumRecorder::AddFrame(const StereoFrame& frame, const cv::Mat& depth_steps)
   if (frame.left_rgb.type() != CV_8UC3) throw RunError("TumRecorder: the left image must be CV_8UC3 (RGB)");
   WriteImage("rgb", &rgb_, frame.t_ns, frame.left_rgb.clone(), PngContent::kPhoto);  // the caller reuses its buffer
   if (frame.left_depth_m.empty()) return;
-  if (!depth_steps.empty() && (depth_steps.type() != CV_16U || depth_steps.size() != frame.left_depth_m.size())) {
-    throw RunError("TumRecorder: depth steps must be CV_16U and the size of the depth image");
-  }
-  WriteImage("depth", &depth_, frame.t_ns,
-             depth_steps.empty() ? DepthToSteps(frame.left_depth_m, kDepthScale) : depth_steps, PngContent::kFlat);
+  WriteImage("depth", &depth_, frame.t_ns, DepthStepsToWrite(frame.left_depth_m, depth_steps, kDepthScale, "TumRecorder"),
+             PngContent::kFlat);
 }
 
 void TumRecorder::AddGroundTruth(const GroundTruthState& state) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
@@ -66,6 +67,21 @@ TEST(QuantiseDepth, ReturnsTheStepsAndTheDepthAReaderGetsBack) {
   EXPECT_EQ(DepthToSteps(d, 5000).at<uint16_t>(10, 10), steps.at<uint16_t>(10, 10));  // idempotent
   cv::Mat empty;
   EXPECT_TRUE(QuantiseDepth(&empty, 5000).empty());
+}
+
+TEST(DepthStepsToWrite, GivenStepsAreWrittenAsTheyAreOthersConverted) {
+  cv::Mat d(6, 8, CV_32F, cv::Scalar(1.25f));
+  const cv::Mat given = DepthToSteps(d, 5000);
+  EXPECT_EQ(DepthStepsToWrite(d, given, 5000, "R").data, given.data);  // no copy, no conversion
+  const cv::Mat converted = DepthStepsToWrite(d, cv::Mat(), 5000, "R");
+  EXPECT_EQ(cv::norm(converted, given, cv::NORM_INF), 0.0);
+  try {
+    DepthStepsToWrite(d, cv::Mat(6, 8, CV_32F, cv::Scalar(0)), 5000, "TumRecorder");
+    FAIL() << "a float image is not steps";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("TumRecorder"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(DepthStepsToWrite(d, cv::Mat(5, 8, CV_16U, cv::Scalar(0)), 5000, "R"), RunError);
 }
 
 }  // namespace
