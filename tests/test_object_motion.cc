@@ -138,29 +138,74 @@ TEST(ObjectMotion, AcrossTheViewIsJudgedFinerThanInDepth) {
   }
 }
 
-TEST(ObjectMotion, ReleasedAfterLagPlusHold) {
-  SyntheticObject obj(40, 7);
+// Moves at `speed` (m/s, across the view) for `walk_frames`, stands still for `pause_frames`, then
+// moves on; returns the frame after the stop at which the track releases the object (-1: never
+// within the pause), and in `redetected` the frames after the restart until it is dynamic again
+// (-1: not within `after_frames`).
+int ReleaseAfterStop(double speed, int walk_frames, int pause_frames, int after_frames, uint64_t seed,
+                     const AdaptiveDynamicSettings& s, int* redetected = nullptr) {
+  SyntheticObject obj(40, seed);
   ObjectMotionTrack track;
-  const AdaptiveDynamicSettings s;  // lag 1 s, hold 1 s
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   int k = 0;
-  for (; k < 40; ++k) {  // 2 s at 0.5 m/s
-    offset.x() = 0.5 * k * kFrameNs * 1e-9;
+  for (; k < walk_frames; ++k) {
+    offset.x() = speed * k * kFrameNs * 1e-9;
     track.Add(obj.Observe(k * kFrameNs, offset, 0.5, 0.5), s);
   }
-  ASSERT_TRUE(track.Add(obj.Observe(k++ * kFrameNs, offset, 0.5, 0.5), s));
+  EXPECT_TRUE(track.Add(obj.Observe(k++ * kFrameNs, offset, 0.5, 0.5), s));
   int released = -1;
-  for (int j = 0; j < 100; ++j, ++k) {
-    if (!track.Add(obj.Observe(k * kFrameNs, offset, 0.5, 0.5), s)) {
-      released = j;
-      break;
+  for (int j = 1; j < pause_frames; ++j, ++k) {
+    if (!track.Add(obj.Observe(k * kFrameNs, offset, 0.5, 0.5), s) && released < 0) released = j;
+  }
+  if (redetected) *redetected = -1;
+  for (int j = 1; j <= after_frames; ++j, ++k) {
+    offset.x() += speed * kFrameNs * 1e-9;
+    if (track.Add(obj.Observe(k * kFrameNs, offset, 0.5, 0.5), s) && redetected && *redetected < 0) *redetected = j;
+  }
+  return released;
+}
+
+// The truth of the scenarios calls an object moving while it moved in the last second. The last
+// look that reaches back into the motion ends lag_s (1 s) after the stop; counted from there the
+// hold kept the object 2 s after it stopped. A later look that starts after the stop and sees it
+// stand still dates the motion to its start: released one hold (20 frames) after the stop.
+TEST(ObjectMotion, ReleasedOneHoldAfterItStops) {
+  const AdaptiveDynamicSettings s;  // lag 1 s, hold 1 s, stop_max_m 1 cm
+  for (uint64_t seed = 7; seed < 10; ++seed) {
+    for (double speed : {0.5, 0.1}) {  // a person, the pushed crate
+      const int released = ReleaseAfterStop(speed, 40, 100, 0, seed, s);
+      // Seen: 20-21 frames for the person, 19-20 for the crate (a look below 1 cm hides up to
+      // 0.1 s of its motion).
+      EXPECT_GE(released, 18) << seed << " speed " << speed;
+      EXPECT_LE(released, 23) << seed << " speed " << speed;
     }
   }
-  // The displacement over the lag (0.5 m/s * (1 s - stopped time)) stays above the threshold
-  // (about 0.022 m here: motion across the ray, judged with the keypoints' small error) for 17
-  // frames (seen: released after 37), then one hold of 20 frames.
-  EXPECT_GE(released, 34);
+  // Any still look (not moving by threshold_m beyond its errors) hides up to 0.2 s of the crate's
+  // motion: dated by those, it is released early (seen: 16 frames).
+  AdaptiveDynamicSettings any = s;
+  any.stop_max_m = 1;
+  for (uint64_t seed = 7; seed < 10; ++seed) EXPECT_LE(ReleaseAfterStop(0.1, 40, 100, 0, seed, any), 17) << seed;
+  // Dated by the last look that saw motion, as before stop_max_m existed: lag plus hold.
+  AdaptiveDynamicSettings undated = s;
+  undated.stop_max_m = 0;
+  const int released = ReleaseAfterStop(0.5, 40, 100, 0, 7, undated);
+  EXPECT_GE(released, 34);  // seen: 37
   EXPECT_LE(released, 42);
+}
+
+// A walker who pauses for less than the hold stays dynamic through the pause; one who walks on
+// soon after being released is dynamic again at the first judgement of motion, not after
+// confirm_frames of them.
+TEST(ObjectMotion, APauseShorterThanTheHoldIsBridgedAndARestartSoonAfterIsJudgedAtOnce) {
+  const AdaptiveDynamicSettings s;
+  for (uint64_t seed = 11; seed < 14; ++seed) {
+    EXPECT_EQ(ReleaseAfterStop(0.8, 40, 16, 10, seed, s), -1) << seed;  // 0.8 s pause
+    int restart = -1, fresh = -1;
+    ASSERT_GE(ReleaseAfterStop(0.8, 40, 30, 10, seed, s, &restart), 20) << seed;  // released, then walks on
+    ReleaseAfterStop(0.8, 40, 30 + 60, 10, seed, s, &fresh);  // walks on 3 s after the release
+    EXPECT_GE(restart, 1) << seed;
+    EXPECT_LT(restart, fresh) << seed;
+  }
 }
 
 TEST(ObjectMotion, TooFewMatchesAreNotJudged) {

@@ -89,10 +89,12 @@ TEST(DynamicScenarios, WalkingPeople) {
   const DynamicRun none = RunMethod("walking_people", "none");
   const DynamicRun adaptive = RunMethod("walking_people", "adaptive");
   std::printf("walking_people: adaptive / none ATE = %.3f\n", adaptive.ate_m() / none.ate_m());
-  EXPECT_LE(adaptive.ate_m(), 0.15 * none.ate_m());  // measured 0.068 (3.4 / 50.2 mm); target 0.2
-  EXPECT_LE(adaptive.pct(), 0.12);                    // measured 0.053% of path; target 0.2%
+  EXPECT_LE(adaptive.ate_m(), 0.15 * none.ate_m());  // measured 0.070 (3.5 / 50.2 mm); target 0.2
+  EXPECT_LE(adaptive.pct(), 0.12);                    // measured 0.055% of path; target 0.2%
   EXPECT_EQ(adaptive.lost(), 0);
-  // Measured precision 0.999, recall 0.951, median latency 0.40 s (targets 0.95, 0.90, 0.5 s).
+  // Measured precision 0.999, recall 0.936, median latency 0.40 s (targets 0.95, 0.90, 0.5 s);
+  // recall 0.951 before session 16 dated a stop by the first look that sees it (the 1 s pauses
+  // of these walkers now end as their hold does).
   ExpectDetection(adaptive, 0.95, 0.90, 0.8);
   EXPECT_EQ(none.dyn("dropped_on_moving"), 0.0);  // the baseline keeps everything
   // Mode full (leg odometry + IMU fused, issue 8): measured 3.9 mm, 0.078x the no-removal
@@ -115,7 +117,9 @@ TEST(DynamicScenarios, PushedBox) {
   EXPECT_GE(none.pct(), 5 * 0.04);  // the baseline degrades: 5x static_room's 0.04% of path
   EXPECT_LE(adaptive.ate_m(), 0.02 * none.ate_m());  // measured 0.0055 (4.0 / 729.7 mm); target 0.25
   EXPECT_EQ(adaptive.lost(), 0);
-  ExpectDetection(adaptive, 0.92, 0.95, 1.0);  // measured 0.963, 0.975, 0.50 s
+  // Measured 1.000, 0.975, 0.50 s (precision 0.963 before session 16: the crate was held up to
+  // 1 s longer after it stopped).
+  ExpectDetection(adaptive, 0.97, 0.95, 1.0);
 }
 
 TEST(DynamicScenarios, StandingPeople) {
@@ -162,7 +166,9 @@ TEST(DynamicScenarios, StandingThenWalking) {
   EXPECT_EQ(adaptive.lost(), 0);
   EXPECT_LE(adaptive.pct(), 0.12);                           // measured 0.061% (none: 0.17%)
   EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.95);  // measured 0.998
-  ExpectDetection(adaptive, 0.95, 0.93, 0.5);                // measured 1.000, 0.972, 0.10 s
+  // Measured 1.000, 0.972, 0.10 s. At seed 2 precision was 0.878 (erin held 0.5 s after the
+  // truth's second after her stop), 0.986 since session 16; seeds 3-6: 1.000.
+  ExpectDetection(adaptive, 0.95, 0.93, 0.5);
 }
 
 }  // namespace

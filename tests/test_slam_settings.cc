@@ -143,6 +143,7 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(da.adaptive.interior_px, db.adaptive.interior_px);
   EXPECT_EQ(da.adaptive.max_hamming, db.adaptive.max_hamming);
   EXPECT_EQ(da.adaptive.static_pose_min_share, db.adaptive.static_pose_min_share);
+  EXPECT_EQ(da.adaptive.stop_max_m, db.adaptive.stop_max_m);
 }
 
 // Number of "key: value" lines (not counting section headers) in YAML text.
@@ -163,7 +164,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 14 + 17;
+constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 15 + 17;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();

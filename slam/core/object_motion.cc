@@ -144,17 +144,33 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
     }
   }
   consecutive_moving_ = last_.moving ? consecutive_moving_ + 1 : 0;
-  // Onset needs confirm_frames judgements of motion in a row; once dynamic, every one counts.
-  if (last_.moving && (dynamic_ || consecutive_moving_ >= s.confirm_frames)) {
+  // A judgement spans [t - lag, t]: the motion it sees happened somewhere in that span.
+  const int64_t ref_ns = t_ns - static_cast<int64_t>(last_.lag_s * 1e9);
+  // Onset needs confirm_frames judgements of motion in a row; once dynamic, or within hold_s of its
+  // release (a walker who paused and walks on), every one counts.
+  const bool recently_dynamic = released_ns_ >= 0 && t_ns - released_ns_ <= static_cast<int64_t>(s.hold_s * 1e9);
+  if (last_.moving && (dynamic_ || recently_dynamic || consecutive_moving_ >= s.confirm_frames)) {
     last_motion_ns_ = t_ns;
+    last_motion_ref_ns_ = ref_ns;
     moved_ = true;
     static_since_motion_ = false;
   } else if (last_.still && moved_) {
     static_since_motion_ = true;
+    // A still look that starts after the last motion's look started and whose median displacement
+    // is below stop_max_m dates that motion no later than its own start: the hold runs from there.
+    // Without this an object that stopped is held for up to lag_s longer than it moved (the last
+    // look that still reached back into its walk ends up to lag_s after the stop). A look merely
+    // not judged moving may hide nearly threshold_m of slow motion (a crate at 0.1 m/s: 0.2 s of
+    // it), so it dates nothing.
+    if (ref_ns > last_motion_ref_ns_ && last_.displacement_m < s.stop_max_m) {
+      last_motion_ns_ = std::min(last_motion_ns_, ref_ns);
+    }
   }
   // Released only after hold_s and a judgement that it stands still: an object that moved and
   // then cannot be judged (too few matches, too far for stereo to rule motion out) stays dynamic.
+  const bool was_dynamic = dynamic_;
   dynamic_ = moved_ && (t_ns - last_motion_ns_ <= static_cast<int64_t>(s.hold_s * 1e9) || !static_since_motion_);
+  if (was_dynamic && !dynamic_) released_ns_ = t_ns;
   history_.push_back(std::move(snapshot));
   return dynamic_;
 }

@@ -88,7 +88,10 @@ class ObjectMotionTrack {
  private:
   std::deque<ObjectSnapshot> history_;  // oldest first, all within lag_s of the newest
   MotionMeasurement last_;
-  int64_t last_motion_ns_ = 0;
+  int64_t last_motion_ns_ = 0;      // end of the last look that saw motion, or the start of a later
+                                     // still look that overlaps it: the latest the motion can have been
+  int64_t last_motion_ref_ns_ = 0;   // start of the last look that saw motion
+  int64_t released_ns_ = -1;         // when it last turned from dynamic to static (-1: never)
   int consecutive_moving_ = 0;       // judgements of motion in a row
   bool moved_ = false;
   bool static_since_motion_ = false;  // judged still (MotionMeasurement::still) since it last moved

@@ -153,6 +153,7 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   a.Number("foreground_band_m", &ad->foreground_band_m, NumberRange::Positive());
   a.Integer("max_hamming", &ad->max_hamming, kHamming);
   a.Number("static_pose_min_share", &ad->static_pose_min_share, NumberRange::Closed(0, 1));
+  a.Number("stop_max_m", &ad->stop_max_m, NumberRange::NonNegative());
   a.RejectUnknownKeys();
   m->RejectUnknownKeys();
 }
@@ -332,6 +333,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "foreground_band_m", a.foreground_band_m);
   EmitInt(out, "max_hamming", a.max_hamming);
   EmitNumber(out, "static_pose_min_share", a.static_pose_min_share);
+  EmitNumber(out, "stop_max_m", a.stop_max_m);
   out << YAML::EndMap;
   out << YAML::EndMap;
 

@@ -93,6 +93,8 @@ struct AdaptiveDynamicSettings {
                                      // mismatches (m)
   int max_hamming = 50;              // descriptor distance for matching an object's features over time (bits)
   double static_pose_min_share = 0.2;  // movable objects carry this share of inliers: judge with a pose from the rest (ratio)
+  double stop_max_m = 0.01;          // a still look whose median displacement is below this dates the object's
+                                     // last motion no later than the look's start: the hold runs from there (m)
 };
 
 // Dynamic objects (paper eqs. 1-4): how objects in the segmentation masks are judged.
