@@ -1,5 +1,6 @@
 #pragma once
 // Pixel noise of a camera image. Pure C++/OpenCV on plain inputs (no MuJoCo).
+#include <cstdint>
 #include <random>
 
 #include <opencv2/core/mat.hpp>
@@ -18,5 +19,18 @@ namespace viqu::sim {
 // Throws viqu::InputError for a null pointer, a non-8-bit image, or a negative / non-finite
 // noise_std.
 void AddPixelNoise(cv::Mat* rgb, double noise_std, std::mt19937_64* rng);
+
+// AddPixelNoise in two steps, so that the noise can be drawn where the generator lives (the
+// simulation thread, in the order of its other draws) and added elsewhere (the estimator's
+// thread): for a non-empty image, ApplyPixelNoise(DrawPixelNoise(std, rng), img) gives the bytes
+// AddPixelNoise(img, std, rng) gives and leaves *rng in the same state. DrawPixelNoise takes its
+// one draw whenever noise_std > 0 and throws as AddPixelNoise does for a bad noise_std or a null
+// generator; ApplyPixelNoise throws for a null or non-8-bit image (an empty one is left as it is).
+struct PixelNoiseDraw {
+  double noise_std = 0;  // grey levels; 0: no noise
+  uint64_t state = 0;    // the seed of the image's noise
+};
+PixelNoiseDraw DrawPixelNoise(double noise_std, std::mt19937_64* rng);
+void ApplyPixelNoise(const PixelNoiseDraw& draw, cv::Mat* rgb);
 
 }  // namespace viqu::sim

@@ -55,7 +55,9 @@ struct EurocRig {
 //
 // Everything is written under DATASET.partial/ (CSV files through temporary names) and renamed
 // onto DATASET by Finish(); destroyed without Finish(), the recorder removes DATASET.partial.
-// Timestamps of each stream must increase. Errors throw RunError. IMU and encoder values are
+// Timestamps of each stream must increase. Errors throw RunError. Threads: AddFrame shares no
+// state with AddImu, AddJoints, AddContact and AddGroundTruth, so it may be called on another
+// thread than they are (each of the two groups from one thread at a time); Finish after both. IMU and encoder values are
 // written with as many digits as they need to read back exactly (at most 17), so that a replay
 // gets the very doubles of the run.
 class EurocRecorder {

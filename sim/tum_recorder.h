@@ -24,7 +24,8 @@ namespace viqu::sim {
 // <t> and t are seconds with 9 decimals, exact from the nanosecond stamps. Everything is
 // written under DATASET.partial/ and renamed onto DATASET by Finish(); destroyed without
 // Finish(), the recorder removes DATASET.partial. Stamps of each stream must increase. Errors
-// throw RunError.
+// throw RunError. Threads: AddFrame and AddGroundTruth share no state, so each may be called on
+// its own thread (one at a time each); Finish after both.
 class TumRecorder {
  public:
   // `dataset_dir` is the final folder; a stale DATASET.partial is replaced.

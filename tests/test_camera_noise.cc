@@ -99,6 +99,34 @@ TEST(CameraNoise, SameGeneratorStateIdenticalDifferentSeedDiffers) {
   EXPECT_EQ(cv::norm(a, d, cv::NORM_L1), 0.0);
 }
 
+// The run loop draws the noise on the simulation thread and adds it on the estimator's: the two
+// steps give the same bytes and the same generator state as one call, for each image in turn.
+TEST(CameraNoise, DrawnThenAppliedEqualsAddedAtOnce) {
+  cv::Mat base(480, 640, CV_8UC3);
+  cv::randu(base, 0, 256);
+  std::mt19937_64 once(9), split(9);
+  for (int k = 0; k < 3; ++k) {
+    cv::Mat a = base.clone(), b = base.clone();
+    AddPixelNoise(&a, 2.0, &once);
+    const PixelNoiseDraw draw = DrawPixelNoise(2.0, &split);
+    EXPECT_EQ(once, split) << k;
+    EXPECT_EQ(cv::norm(base, b, cv::NORM_L1), 0.0);  // drawing touches no image
+    ApplyPixelNoise(draw, &b);
+    EXPECT_EQ(cv::norm(a, b, cv::NORM_L1), 0.0) << k;
+    EXPECT_GT(cv::norm(a, base, cv::NORM_L1), 0.0) << k;
+  }
+  // No noise: no draw, no change.
+  const PixelNoiseDraw none = DrawPixelNoise(0.0, &split);
+  EXPECT_EQ(once, split);
+  cv::Mat c = base.clone();
+  ApplyPixelNoise(none, &c);
+  EXPECT_EQ(cv::norm(base, c, cv::NORM_L1), 0.0);
+  EXPECT_THROW(DrawPixelNoise(-1.0, &split), InputError);
+  EXPECT_THROW(DrawPixelNoise(std::nan(""), &split), InputError);
+  cv::Mat f32(20, 20, CV_32FC3, cv::Scalar::all(0.5));
+  EXPECT_THROW(ApplyPixelNoise(DrawPixelNoise(2.0, &split), &f32), InputError);
+}
+
 TEST(CameraNoise, WorksOnRoiAndSingleChannelOnly8Bit) {
   cv::Mat big(100, 100, CV_8UC3, cv::Scalar::all(100));
   cv::Mat roi = big(cv::Rect(10, 10, 50, 50));
