@@ -150,11 +150,17 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   sim::RenderOptions ropt;
   ropt.width = s.sensors.camera.width;
   ropt.height = s.sensors.camera.height;
-  // Render only what this run consumes (each pass costs render time): depth for a recording or
-  // rgbd tracking (stereo tracking finds its own depth); the instance image for the estimator
-  // (dynamic stage, dynamic.csv truth), a recording or the video.
-  ropt.depth = s.sensors.camera.depth && (opt.record || opt.record_tum || (opt.slam && settings->input == "rgbd"));
+  // Render only what this run consumes (each pass costs render time): the instance image for the
+  // estimator (dynamic stage, dynamic.csv truth), a recording or the video; depth for a
+  // recording, rgbd tracking (stereo tracking finds its own depth), or the detector model when it
+  // grows masks: it grows the nearest instance first, by the median depth of its pixels
+  // (sim/segmentation_model.h), so without depth the masks where two instances meet would differ
+  // from those of the same run recorded.
   ropt.segmentation = s.sensors.camera.segmentation && (opt.slam || opt.record || opt.video);
+  const bool masks_grow =
+      ropt.segmentation && s.sensors.segmentation.dilate_px + s.sensors.segmentation.boundary_jitter_px > 0;
+  ropt.depth = s.sensors.camera.depth &&
+               (opt.record || opt.record_tum || (opt.slam && settings->input == "rgbd") || masks_grow);
   sim::StereoRenderer renderer(world.model(), ropt);
   Sensors sensors(s);
 

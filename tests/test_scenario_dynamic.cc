@@ -89,8 +89,10 @@ TEST(DynamicScenarios, WalkingPeople) {
   const DynamicRun none = RunMethod("walking_people", "none");
   const DynamicRun adaptive = RunMethod("walking_people", "adaptive");
   std::printf("walking_people: adaptive / none ATE = %.3f\n", adaptive.ate_m() / none.ate_m());
-  EXPECT_LE(adaptive.ate_m(), 0.15 * none.ate_m());  // measured 0.070 (3.5 / 50.2 mm); target 0.2
-  EXPECT_LE(adaptive.pct(), 0.12);                    // measured 0.055% of path; target 0.2%
+  // Measured 0.080 (3.8 / 47.5 mm) since session 16 rendered depth for the detector model's mask
+  // growth order (0.070, 3.5 / 50.2 mm, before); target 0.2.
+  EXPECT_LE(adaptive.ate_m(), 0.15 * none.ate_m());
+  EXPECT_LE(adaptive.pct(), 0.12);                    // measured 0.06% of path; target 0.2%
   EXPECT_EQ(adaptive.lost(), 0);
   // Measured precision 0.999, recall 0.936, median latency 0.40 s (targets 0.95, 0.90, 0.5 s);
   // recall 0.951 before session 16 dated a stop by the first look that sees it (the 1 s pauses
@@ -126,7 +128,8 @@ TEST(DynamicScenarios, StandingPeople) {
   const DynamicRun semantic = RunMethod("standing_people", "semantic");
   const DynamicRun adaptive = RunMethod("standing_people", "adaptive");
   std::printf("standing_people: adaptive / semantic ATE = %.3f\n", adaptive.ate_m() / semantic.ate_m());
-  // Measured 1.01 (2.9 / 2.9 mm): issue 7's target (0.8) is not met, see the README.
+  // Measured 1.01 (2.9 / 2.9 mm), 1.17 (2.8 / 2.4 mm) since session 16: issue 7's target (0.8)
+  // is not met, see the README.
   EXPECT_LE(adaptive.ate_m(), 2.0 * semantic.ate_m());
   EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.95);  // measured 1.000; target 0.90
   EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.35);        // measured 0.692; target 0.95, not met
