@@ -157,8 +157,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   // (sim/segmentation_model.h), so without depth the masks where two instances meet would differ
   // from those of the same run recorded.
   ropt.segmentation = s.sensors.camera.segmentation && (opt.slam || opt.record || opt.video);
-  const bool masks_grow =
-      ropt.segmentation && s.sensors.segmentation.dilate_px + s.sensors.segmentation.boundary_jitter_px > 0;
+  const bool masks_grow = ropt.segmentation && sim::SegmentationModel::GrowsMasks(s.sensors.segmentation);
   ropt.depth = s.sensors.camera.depth &&
                (opt.record || opt.record_tum || (opt.slam && settings->input == "rgbd") || masks_grow);
   sim::StereoRenderer renderer(world.model(), ropt);

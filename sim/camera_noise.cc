@@ -11,6 +11,14 @@ namespace viqu::sim {
 
 namespace {
 
+void CheckEightBit(const cv::Mat& rgb) {
+  if (rgb.depth() != CV_8U) {
+    std::ostringstream msg;
+    msg << "AddPixelNoise: expected an 8-bit image, got OpenCV type " << rgb.type();
+    throw viqu::InputError(msg.str());
+  }
+}
+
 void CheckStd(double noise_std) {
   if (!(noise_std >= 0.0) || !std::isfinite(noise_std)) {
     std::ostringstream msg;
@@ -37,11 +45,7 @@ PixelNoiseDraw DrawPixelNoise(double noise_std, std::mt19937_64* rng) {
 void ApplyPixelNoise(const PixelNoiseDraw& draw, cv::Mat* rgb) {
   if (rgb == nullptr) throw viqu::InputError("AddPixelNoise: null image");
   if (rgb->empty() || draw.noise_std == 0.0) return;
-  if (rgb->depth() != CV_8U) {
-    std::ostringstream msg;
-    msg << "AddPixelNoise: expected an 8-bit image, got OpenCV type " << rgb->type();
-    throw viqu::InputError(msg.str());
-  }
+  CheckEightBit(*rgb);
   cv::RNG cv_rng(draw.state);
   // int16 noise: rounded to whole grey levels by fill(); cv::add saturates the sum to [0, 255].
   cv::Mat noise(rgb->size(), CV_MAKETYPE(CV_16S, rgb->channels()));
@@ -55,11 +59,7 @@ void AddPixelNoise(cv::Mat* rgb, double noise_std, std::mt19937_64* rng) {
   }
   CheckStd(noise_std);
   if (rgb->empty() || noise_std == 0.0) return;
-  if (rgb->depth() != CV_8U) {
-    std::ostringstream msg;
-    msg << "AddPixelNoise: expected an 8-bit image, got OpenCV type " << rgb->type();
-    throw viqu::InputError(msg.str());
-  }
+  CheckEightBit(*rgb);  // before the draw: a rejected image leaves *rng as it was
   ApplyPixelNoise(DrawPixelNoise(noise_std, rng), rgb);
 }
 

@@ -133,7 +133,7 @@ SegmentationModel::Detection SegmentationModel::Detect(const viqu::StereoFrame& 
     slot[detectable[i]->id] = static_cast<int>(i);
     stats[i].id = detectable[i]->id;
   }
-  const bool want_depth = config_.dilate_px + config_.boundary_jitter_px > 0 && !detectable.empty() &&
+  const bool want_depth = GrowsMasks(config_) && !detectable.empty() &&
                           !frame.left_depth_m.empty() && frame.left_depth_m.type() == CV_32FC1 &&
                           frame.left_depth_m.size() == ideal.size();
   for (int y = 0; y < ideal.rows && !detectable.empty(); ++y) {

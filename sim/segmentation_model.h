@@ -97,6 +97,12 @@ class SegmentationModel {
   // viqu::InputError for a null frame or an instance image that is not CV_16UC1.
   void Apply(viqu::StereoFrame* frame);
 
+  // Whether masks may grow (step 4: dilate_px + boundary_jitter_px > 0), so that the frames need
+  // left_depth_m for the nearest-first order: without it the order is by id, another result.
+  static bool GrowsMasks(const viqu::SegmentationConfig& config) {
+    return config.dilate_px + config.boundary_jitter_px > 0;
+  }
+
  private:
   // The detector's output for one frame.
   struct Detection {
