@@ -86,21 +86,23 @@ TEST(LegOdometryScenario, SlipperyPatchFlagsSlidingFeet) {
               slip["precision"].as<double>(), slip["recall"].as<double>(), slip["truth_events"].as<int>(),
               slip["events"].as<int>(), r.metrics["lo"]["ate"]["rmse_m"].as<double>(),
               r.metrics["lo"]["drift_pct_path"].as<double>(), r.metrics["ate"]["rmse_m"].as<double>());
-  // Measured: precision 0.99, recall 0.55 over about a thousand true events.
+  // Measured (session 17, with the speed gate): precision 0.93, recall 0.86 over 1038 true events
+  // (the chi-square gate alone: 0.99 and 0.73). Bounds at about twice the misses, and above the
+  // chi-square gate's recall, so that losing the speed gate fails here.
   EXPECT_GE(slip["truth_events"].as<int>(), 500);
-  EXPECT_GE(slip["precision"].as<double>(), 0.9);
-  EXPECT_GE(slip["recall"].as<double>(), 0.27);
+  EXPECT_GE(slip["precision"].as<double>(), 0.85);
+  EXPECT_GE(slip["recall"].as<double>(), 0.75);
   // slip.csv lists every event of both kinds.
   EXPECT_EQ(Lines(r.dir / "slip.csv") - 1, slip["truth_events"].as<int>() + slip["events"].as<int>());
-  // The filter fused with vision judges the feet by the same gate (slip.fused.*): measured
-  // precision 0.988, recall 0.660; vision bounds its error but does not make it see feet that
-  // slide together (test_leg_odometry).
+  // The filter fused with vision judges the feet by the same gates (slip.fused.*): measured
+  // precision 0.95, recall 0.83 (chi-square gate alone 0.99 and 0.66); vision bounds its error
+  // but does not make it see feet that slide together (test_leg_odometry).
   const YAML::Node& fused = slip["fused"];
   std::printf("slippery_patch, the filter fused with vision: slip precision %.3f recall %.3f (%d detected)\n",
               fused["precision"].as<double>(), fused["recall"].as<double>(), fused["events"].as<int>());
   EXPECT_GE(fused["precision"].as<double>(), 0.9);
-  EXPECT_GE(fused["recall"].as<double>(), 0.33);
-  // Vision is unaffected by the ice: measured 9.5 mm.
+  EXPECT_GE(fused["recall"].as<double>(), 0.7);
+  // Vision is unaffected by the ice: measured 0.43 mm (9.5 mm when this test was written).
   EXPECT_LT(r.metrics["ate"]["rmse_m"].as<double>(), 0.02);
 }
 

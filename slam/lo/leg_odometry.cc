@@ -134,6 +134,12 @@ void LegOdometry::AddJoints(const JointState& js) {
   // Gate every stance foot against the prediction before any of them updates it.
   std::array<std::optional<Eigen::Vector3d>, kNumLegs> v_foot;  // body velocity through each foot, over its window
   std::array<double, kNumLegs> v_std{};                        // and its standard deviation (m/s)
+  // Two gates. The chi-square one weighs the innovation by the filter's velocity variance, which
+  // grows while feet are rejected, so a long slide is let back in; the speed gate holds a foot
+  // out whatever that variance, but only while some stance foot agrees with the filter: when
+  // none does, the filter has drifted, and gating every foot by it would leave it on the IMU.
+  std::array<bool, kNumLegs> too_fast{};
+  int agreeing = 0;  // stance feet within the speed limit of the filter
   for (int i = 0; i < kNumLegs; ++i) {
     FootStatus& f = feet_[i];
     if (contact[i] && !f.contact) f.touchdown_ns = js.t_ns;
@@ -158,6 +164,13 @@ void LegOdometry::AddJoints(const JointState& js) {
     const Eigen::Vector3d v_mean = (kf_.position() - ref->p_w) / dt;
     f.mahalanobis2 = kf_.VelocityInnovationMahalanobis2(*v_foot[i] - v_mean, v_std[i]);
     f.slipping = f.mahalanobis2 > settings_.slip_gate_chi2;
+    // The limit grows as the window shrinks, as the velocity's noise does.
+    const double speed_limit = settings_.slip_speed_mps * std::max(1.0, settings_.velocity_window_s / dt);
+    too_fast[i] = (*v_foot[i] - v_mean).norm() > speed_limit;
+    if (!too_fast[i]) ++agreeing;
+  }
+  if (agreeing > 0) {
+    for (int i = 0; i < kNumLegs; ++i) feet_[i].slipping = feet_[i].slipping || too_fast[i];
   }
   for (int i = 0; i < kNumLegs; ++i) {
     const FootStatus& f = feet_[i];

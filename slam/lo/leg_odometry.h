@@ -28,7 +28,7 @@ AttitudeFilterOptions AttitudeOptionsOf(const slam::LegOdometrySettings& s);
 // What the estimator concluded about one foot at the last encoder reading.
 struct FootStatus {
   bool contact = false;          // in contact by the configured source
-  bool slipping = false;         // in contact, but its velocity failed the slip gate
+  bool slipping = false;         // in contact, but its velocity failed a slip gate (chi-square or speed)
   double mahalanobis2 = 0;       // squared Mahalanobis distance of its velocity innovation (0 in swing and settling)
   int64_t touchdown_ns = 0;      // time of its last touch-down (ns)
 };

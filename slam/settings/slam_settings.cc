@@ -176,6 +176,7 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("slip_min_window_s", &lo->slip_min_window_s, NumberRange::Closed(0, 1));
   m->Number("contact_height_m", &lo->contact_height_m, NumberRange::Positive());
   m->Integer("fusion_min_inliers", &lo->fusion_min_inliers, kCount0);
+  m->Number("slip_speed_mps", &lo->slip_speed_mps, NumberRange::Positive());
   m->RejectUnknownKeys();
 }
 
@@ -356,6 +357,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "slip_min_window_s", lo.slip_min_window_s);
   EmitNumber(out, "contact_height_m", lo.contact_height_m);
   EmitInt(out, "fusion_min_inliers", lo.fusion_min_inliers);
+  EmitNumber(out, "slip_speed_mps", lo.slip_speed_mps);
   out << YAML::EndMap;
 
   out << YAML::EndMap;

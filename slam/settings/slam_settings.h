@@ -136,6 +136,10 @@ struct LegOdometrySettings {
   double slip_min_window_s = 0.01;   // a foot is judged once it has stood this long (s)
   double contact_height_m = 0.006;   // estimated: feet within this of the lowest foot are in contact (m)
   int fusion_min_inliers = 50;       // full: a frame tracked with this many inliers corrects the filter (count)
+  // Slip, by speed: a stance foot whose body velocity differs from the filter's by more than this
+  // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
+  // stance foot agrees with the filter (m/s).
+  double slip_speed_mps = 0.05;
 };
 
 struct SlamSettings {
