@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes viqu's indoor worlds (room.xml, corridor.xml, room_large.xml) as MJCF pieces.
+"""Writes viqu's indoor worlds (room.xml, room_blank_wall.xml, corridor.xml, room_large.xml) as MJCF pieces.
 
 Edit the layouts here, not the XML. Every world is an MJCF piece for the scene composer
 (<asset> + <worldbody>, no <compiler>/<option>/<visual>), with a floor plane named `floor`, at
@@ -261,9 +261,10 @@ def rug(w, x, y, sx, sy):
     w.geom_box(w.body, (x, y, 0.0015), (sx / 2, sy / 2, 0.0015), "rug")
 
 
-def room():
+def room(partition=False):
     """6 m x 5 m room, x in [-3, 3], y in [-2.5, 2.5]. The free middle (|x| < 1.5, |y| < 1.5)
-    leaves room for a 2 m x 2 m square of waypoints 0.4 m or more from everything."""
+    leaves room for a 2 m x 2 m square of waypoints 0.4 m or more from everything.
+    partition: the same room with a plain painted board standing in the free middle (room_blank_wall)."""
     w = World("room", 11)
     w.common_assets("floor_wood", 1.0)
     H = 2.5
@@ -286,9 +287,16 @@ def room():
     w.plant("plant", 2.6, -2.1)
     w.plant("plant_2", -2.55, -2.15)
     rug(w, 2.0, 1.9, 1.6, 0.9)
-    w.write("room.xml", "room: a 6 m x 5 m furnished room (shelf, table and chairs, doors, "
-            "boxes, radiator, bench). Free space |x| < 1.5, |y| < 1.5.",
-            (3, 2.5), [((-1.2, 0, 2.4), 0.45), ((1.2, 0, 2.4), 0.45)])
+    lights = [((-1.2, 0, 2.4), 0.45), ((1.2, 0, 2.4), 0.45)]
+    if not partition:
+        w.write("room.xml", "room: a 6 m x 5 m furnished room (shelf, table and chairs, doors, "
+                "boxes, radiator, bench). Free space |x| < 1.5, |y| < 1.5.", (3, 2.5), lights)
+        return
+    # A board painted one flat colour, no texture: 2.4 m long along y at x = 1.0 (face at
+    # x = 0.99), 1 m high, 2 cm thick. Close up it fills the view with nothing to track.
+    w.panel(w.body, 1.0, -1.2, 1.0, 1.2, 0, 1.0, 0.02, "0.82 0.8 0.76")
+    w.write("room_blank_wall.xml", "room_blank_wall: the room with a plain painted board (2.4 m x 1 m, "
+            "no texture) standing along y at x = 1.0.", (3, 2.5), lights)
 
 
 def corridor():
@@ -371,5 +379,6 @@ def room_large():
 
 if __name__ == "__main__":
     room()
+    room(partition=True)
     corridor()
     room_large()
