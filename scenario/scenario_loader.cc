@@ -322,7 +322,8 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   }
   for (const char* key : {"attitude_gain", "gyro_bias_gain", "gravity_gate_mps2", "accel_noise", "stance_foot_noise",
                           "swing_foot_noise", "kin_position_noise_m", "kin_velocity_noise_mps", "velocity_window_s", "touchdown_s",
-                          "touchdown_inflation", "touchdown_inflation_vertical", "slip_gate_chi2", "slip_min_window_s", "contact_height_m", "fusion_min_inliers", "slip_speed_mps"}) {
+                          "touchdown_inflation", "touchdown_inflation_vertical", "slip_gate_chi2", "slip_min_window_s", "contact_height_m", "fusion_min_inliers", "slip_speed_mps",
+                          "attitude_accel_average_s"}) {
     double v = 0;
     if (lo.Number(key, &v, NumberRange::NonNegative())) s->lo.emplace_back(key, YamlNumberText(v));
   }

@@ -1,5 +1,6 @@
 #include "slam/lo/attitude_filter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -23,6 +24,13 @@ void AttitudeFilter::Reset(int64_t t_ns, const Eigen::Quaterniond& q_w_b, const 
   have_rate_ = false;  // no rotation before the first sample
   correction_.setZero();
   corrected_ = false;
+  force_w_.reset();
+}
+
+void AttitudeFilter::SetOrientation(const Eigen::Quaterniond& q_w_b) {
+  const Eigen::Quaterniond q = q_w_b.normalized();
+  if (force_w_) force_w_ = q * (q_w_b_.conjugate() * *force_w_);
+  q_w_b_ = q;
 }
 
 Eigen::Quaterniond AttitudeFilter::OrientationAt(int64_t t_ns) const {
@@ -46,10 +54,17 @@ void AttitudeFilter::Add(const ImuSample& s) {
   // Gravity correction: the accelerometer's direction is "up" in the body frame when the trunk
   // is not accelerating; the cross product with the predicted up gives the tilt error.
   correction_.setZero();
-  const double norm = s.accel_i.norm();
+  Eigen::Vector3d force = s.accel_i;  // body frame
+  if (opt_.accel_average_s > 0) {
+    const Eigen::Vector3d f_w = q_w_b_ * s.accel_i;
+    if (!force_w_) force_w_ = f_w;
+    *force_w_ += std::min(1.0, dt / opt_.accel_average_s) * (f_w - *force_w_);
+    force = q_w_b_.conjugate() * *force_w_;
+  }
+  const double norm = force.norm();
   corrected_ = std::abs(norm - opt_.gravity_mps2) <= opt_.gravity_gate_mps2 && norm > 0;
   if (!corrected_) return;
-  const Eigen::Vector3d up_measured = s.accel_i / norm;
+  const Eigen::Vector3d up_measured = force / norm;
   const Eigen::Vector3d up_predicted = q_w_b_.conjugate() * Eigen::Vector3d::UnitZ();
   // A body rotation rate along `error` turns the predicted up towards the measured one.
   const Eigen::Vector3d error = up_measured.cross(up_predicted);

@@ -19,6 +19,11 @@ struct AttitudeFilterOptions {
   double gyro_bias_gain = 0.005;   // integral gain: bias estimate rate per rad of tilt error (1/s^2)
   double gravity_gate_mps2 = 1.5;  // skip the correction when | |accel| - g | exceeds this (m/s^2)
   double gravity_mps2 = 9.81;      // local gravity (m/s^2); a constant of the world, not tuned
+  // The accelerometer's "up" is the specific force averaged in the world frame over this time
+  // constant (s), not each sample's own direction: averaging the vector cancels the trunk's
+  // zero-mean accelerations, while the mean of each sample's normalised direction is biased by
+  // their correlations (on the trot, fore-aft with vertical). 0: each sample on its own.
+  double accel_average_s = 0.0;
 };
 
 class AttitudeFilter {
@@ -35,8 +40,10 @@ class AttitudeFilter {
   // for time going backwards.
   void Add(const ImuSample& s);
 
-  // Replaces the orientation (a correction from elsewhere, e.g. vision); the bias estimate stays.
-  void SetOrientation(const Eigen::Quaterniond& q_w_b) { q_w_b_ = q_w_b.normalized(); }
+  // Replaces the orientation (a correction from elsewhere, e.g. vision); the bias estimate stays,
+  // and the averaged specific force turns with the correction (it is the same force, seen from
+  // the corrected orientation).
+  void SetOrientation(const Eigen::Quaterniond& q_w_b);
 
   const Eigen::Quaterniond& q_w_b() const { return q_w_b_; }
   // The orientation at t_ns, extrapolated from the last sample with its bias-corrected rate.
@@ -52,6 +59,7 @@ class AttitudeFilter {
   Eigen::Vector3d bias_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_gyro_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d correction_ = Eigen::Vector3d::Zero();  // proportional term of the last sample (rad/s)
+  std::optional<Eigen::Vector3d> force_w_;  // specific force averaged in the world frame (m/s^2)
   std::optional<int64_t> last_t_ns_;
   bool have_rate_ = false;  // a sample has come since Reset
   bool corrected_ = false;

@@ -26,6 +26,7 @@ AttitudeFilterOptions AttitudeOptionsOf(const slam::LegOdometrySettings& s) {
   o.gyro_bias_gain = s.gyro_bias_gain;
   o.gravity_gate_mps2 = s.gravity_gate_mps2;
   o.gravity_mps2 = kGravity;
+  o.accel_average_s = s.attitude_accel_average_s;
   return o;
 }
 

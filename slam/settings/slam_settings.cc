@@ -177,6 +177,7 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("contact_height_m", &lo->contact_height_m, NumberRange::Positive());
   m->Integer("fusion_min_inliers", &lo->fusion_min_inliers, kCount0);
   m->Number("slip_speed_mps", &lo->slip_speed_mps, NumberRange::Positive());
+  m->Number("attitude_accel_average_s", &lo->attitude_accel_average_s, NumberRange::Closed(0, 10));
   m->RejectUnknownKeys();
 }
 
@@ -358,6 +359,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "contact_height_m", lo.contact_height_m);
   EmitInt(out, "fusion_min_inliers", lo.fusion_min_inliers);
   EmitNumber(out, "slip_speed_mps", lo.slip_speed_mps);
+  EmitNumber(out, "attitude_accel_average_s", lo.attitude_accel_average_s);
   out << YAML::EndMap;
 
   out << YAML::EndMap;

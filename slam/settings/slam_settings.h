@@ -140,6 +140,7 @@ struct LegOdometrySettings {
   // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
   // stance foot agrees with the filter (m/s).
   double slip_speed_mps = 0.05;
+  double attitude_accel_average_s = 0.0;  // attitude: "up" from the specific force averaged in the world over this (s)
 };
 
 struct SlamSettings {
