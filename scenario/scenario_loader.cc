@@ -320,10 +320,11 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   if (lo.Choice("contact", &contact, {"schedule", "touch", "estimated"})) {
     s->lo.emplace_back("contact", contact);
   }
-  for (const char* key : {"attitude_gain", "gyro_bias_gain", "gravity_gate_mps2", "accel_noise", "stance_foot_noise",
-                          "swing_foot_noise", "kin_position_noise_m", "kin_velocity_noise_mps", "velocity_window_s", "touchdown_s",
-                          "touchdown_inflation", "touchdown_inflation_vertical", "slip_gate_chi2", "slip_min_window_s", "contact_height_m", "fusion_min_inliers", "slip_speed_mps",
-                          "attitude_accel_average_s"}) {
+  for (const char* key : {"attitude_gain", "gyro_bias_gain", "gravity_gate_mps2", "attitude_accel_average_s",
+                          "accel_noise", "stance_foot_noise", "swing_foot_noise", "kin_position_noise_m",
+                          "kin_velocity_noise_mps", "velocity_window_s", "touchdown_s", "touchdown_inflation",
+                          "touchdown_inflation_vertical", "slip_gate_chi2", "slip_min_window_s", "slip_speed_mps",
+                          "contact_height_m", "fusion_min_inliers"}) {
     double v = 0;
     if (lo.Number(key, &v, NumberRange::NonNegative())) s->lo.emplace_back(key, YamlNumberText(v));
   }

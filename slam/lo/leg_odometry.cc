@@ -163,11 +163,12 @@ void LegOdometry::AddJoints(const JointState& js) {
     v_std[i] = settings_.kin_velocity_noise_mps * std::max(1.0, settings_.velocity_window_s / dt);
     // The filter's own mean velocity over the same window (its prediction for now).
     const Eigen::Vector3d v_mean = (kf_.position() - ref->p_w) / dt;
-    f.mahalanobis2 = kf_.VelocityInnovationMahalanobis2(*v_foot[i] - v_mean, v_std[i]);
+    const Eigen::Vector3d innovation = *v_foot[i] - v_mean;
+    f.mahalanobis2 = kf_.VelocityInnovationMahalanobis2(innovation, v_std[i]);
     f.slipping = f.mahalanobis2 > settings_.slip_gate_chi2;
     // The limit grows as the window shrinks, as the velocity's noise does.
     const double speed_limit = settings_.slip_speed_mps * std::max(1.0, settings_.velocity_window_s / dt);
-    too_fast[i] = (*v_foot[i] - v_mean).norm() > speed_limit;
+    too_fast[i] = innovation.norm() > speed_limit;
     if (!too_fast[i]) ++agreeing;
   }
   if (agreeing > 0) {

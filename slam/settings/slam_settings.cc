@@ -163,6 +163,7 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("attitude_gain", &lo->attitude_gain, NumberRange::Closed(0, 100));
   m->Number("gyro_bias_gain", &lo->gyro_bias_gain, NumberRange::Closed(0, 100));
   m->Number("gravity_gate_mps2", &lo->gravity_gate_mps2, NumberRange::Positive());
+  m->Number("attitude_accel_average_s", &lo->attitude_accel_average_s, NumberRange::Closed(0, 10));
   m->Number("accel_noise", &lo->accel_noise, NumberRange::Positive());
   m->Number("stance_foot_noise", &lo->stance_foot_noise, NumberRange::Positive());
   m->Number("swing_foot_noise", &lo->swing_foot_noise, NumberRange::Positive());
@@ -177,7 +178,6 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("contact_height_m", &lo->contact_height_m, NumberRange::Positive());
   m->Integer("fusion_min_inliers", &lo->fusion_min_inliers, kCount0);
   m->Number("slip_speed_mps", &lo->slip_speed_mps, NumberRange::Positive());
-  m->Number("attitude_accel_average_s", &lo->attitude_accel_average_s, NumberRange::Closed(0, 10));
   m->RejectUnknownKeys();
 }
 
@@ -345,6 +345,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "attitude_gain", lo.attitude_gain);
   EmitNumber(out, "gyro_bias_gain", lo.gyro_bias_gain);
   EmitNumber(out, "gravity_gate_mps2", lo.gravity_gate_mps2);
+  EmitNumber(out, "attitude_accel_average_s", lo.attitude_accel_average_s);
   EmitNumber(out, "accel_noise", lo.accel_noise);
   EmitNumber(out, "stance_foot_noise", lo.stance_foot_noise);
   EmitNumber(out, "swing_foot_noise", lo.swing_foot_noise);
@@ -359,7 +360,6 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "contact_height_m", lo.contact_height_m);
   EmitInt(out, "fusion_min_inliers", lo.fusion_min_inliers);
   EmitNumber(out, "slip_speed_mps", lo.slip_speed_mps);
-  EmitNumber(out, "attitude_accel_average_s", lo.attitude_accel_average_s);
   out << YAML::EndMap;
 
   out << YAML::EndMap;

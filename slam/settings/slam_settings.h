@@ -121,6 +121,7 @@ struct LegOdometrySettings {
   double attitude_gain = 0.5;        // gravity correction of roll and pitch (1/s)
   double gyro_bias_gain = 0.005;     // integral gain estimating the gyro bias (1/s^2)
   double gravity_gate_mps2 = 1.5;    // no correction when |accel| differs from g by more (m/s^2)
+  double attitude_accel_average_s = 0.0;  // "up" from the specific force averaged in the world over this (s; 0 = each sample)
   // Kalman filter of eq. 5 (state: body position, velocity, four feet in the world).
   double accel_noise = 0.3;          // acceleration input noise, white (m/s^2/sqrt(Hz))
   double stance_foot_noise = 0.002;  // random walk of a stance foot (m/sqrt(s))
@@ -140,7 +141,6 @@ struct LegOdometrySettings {
   // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
   // stance foot agrees with the filter (m/s).
   double slip_speed_mps = 0.05;
-  double attitude_accel_average_s = 0.0;  // attitude: "up" from the specific force averaged in the world over this (s)
 };
 
 struct SlamSettings {
