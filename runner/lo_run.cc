@@ -26,6 +26,7 @@ LoRun::LoRun(const slam::LegOdometrySettings& settings, const kin::LegKinematics
 
 void LoRun::AddJoints(const JointState& js, int64_t period_ns, const LoTruth& truth) {
   lo_.AddJoints(js);
+  true_gyro_bias_i_ = truth.gyro_bias_i;
   const Eigen::Vector3d p = lo_.filter().position(), v = lo_.filter().velocity();
   char buf[256];
   std::snprintf(buf, sizeof buf, "%s,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f",
@@ -95,6 +96,12 @@ LoSummary LoRun::Finish(const eval::Trajectory& gt_cam, double path_length_m, Js
     json->Set("lo.yaw_drift_deg", s.yaw_drift_deg);
   }
   json->Set("lo.update_ms_mean", s.update_ms_mean);
+  // The gyro bias about the trunk's vertical: the estimate at the end (stance pairs) and the truth.
+  json->Set("lo.gyro_bias_z_radps", lo_.attitude().gyro_bias().z());
+  json->Set("lo.true_gyro_bias_z_radps", true_gyro_bias_i_.z());
+  json->Set("lo.yaw_bias_pieces", lo_.yaw_bias().pieces());
+  json->Set("lo.yaw_bias_rejected", lo_.yaw_bias().rejected());
+  json->Set("lo.yaw_bias_turning", lo_.yaw_bias().turning());
   json->Set("slip.precision", s.slip.precision);
   json->Set("slip.recall", s.slip.recall);
   json->Set("slip.events", s.slip.detected_events);

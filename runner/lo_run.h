@@ -25,6 +25,7 @@ struct LoTruth {
   std::array<double, kNumLegs> sole_speed_mps{};  // speed of the sole's material point (m/s)
   Eigen::Vector3d p_w_body = Eigen::Vector3d::Zero();    // trunk position (m)
   Eigen::Vector3d vel_w_body = Eigen::Vector3d::Zero();  // trunk velocity (m/s)
+  Eigen::Vector3d gyro_bias_i = Eigen::Vector3d::Zero();  // the simulated gyro's bias now (rad/s, IMU frame)
 };
 
 struct LoSummary {
@@ -66,6 +67,7 @@ class LoRun {
   SlipEventBuilder detected_events_{0.0};
   const lo::LegOdometry* fused_ = nullptr;
   SlipEventBuilder fused_events_{0.0};
+  Eigen::Vector3d true_gyro_bias_i_ = Eigen::Vector3d::Zero();  // at the last encoder reading
 };
 
 // "LO: ATE 0.0123 m, drift 1.23% of path, yaw drift 2.1 deg; slip precision 0.90 recall 0.85 (20 true, 19 detected)"

@@ -267,6 +267,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
         const GroundTruthState gt = world.GroundTruth();
         truth.p_w_body = gt.T_w_body.p_w_x;
         truth.vel_w_body = gt.vel_w_body;
+        truth.gyro_bias_i = sensors.imu.gyro_bias();
         for (int i = 0; i < kNumLegs; ++i) truth.sole_speed_mps[i] = world.FootSoleVelocityWorld(static_cast<Leg>(i)).norm();
         const int64_t period_ns = sensors.joint_clock.period_ns();
         measured.push_back([&lo, &fused_lo, contact, js, truth, period_ns] {

@@ -324,7 +324,9 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
                           "accel_noise", "stance_foot_noise", "swing_foot_noise", "kin_position_noise_m",
                           "kin_velocity_noise_mps", "velocity_window_s", "touchdown_s", "touchdown_inflation",
                           "touchdown_inflation_vertical", "slip_gate_chi2", "slip_min_window_s", "slip_speed_mps",
-                          "contact_height_m", "fusion_min_inliers"}) {
+                          "yaw_bias_initial_std", "yaw_bias_walk", "yaw_pair_noise_m", "yaw_pair_min_s",
+                          "yaw_pair_max_s", "yaw_pair_max_rate_radps",
+                          "yaw_pair_gate_chi2", "contact_height_m", "fusion_min_inliers"}) {
     double v = 0;
     if (lo.Number(key, &v, NumberRange::NonNegative())) s->lo.emplace_back(key, YamlNumberText(v));
   }

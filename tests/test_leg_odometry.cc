@@ -3,6 +3,7 @@
 // (URDF kinematics, no simulator).
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include "slam/lo/attitude_filter.h"
 #include "slam/lo/leg_imu_kf.h"
 #include "slam/lo/leg_odometry.h"
+#include "slam/lo/yaw_bias_from_feet.h"
 #include "random_vector.h"
 
 namespace viqu {
@@ -450,7 +452,7 @@ TEST_F(SyntheticStance, EstimatedContactFindsTheLowFeet) {
 // put. `sink_m` sets the compression (the 1 mm above). Returns the estimator's vertical body
 // error after `seconds` (m).
 double TrotInPlaceOnSoftFloor(const kin::LegKinematics& kin, const std::array<Eigen::Vector3d, kNumLegs>& feet_body,
-                              lo::LegOdometry* lo, double seconds, double sink_m = 1e-3) {
+                              lo::LegOdometry* lo, double seconds, double sink_m = 1e-3, double gyro_bias_z = 0) {
   const Eigen::Isometry3d T = Eigen::Translation3d(0, 0, 0.075) * Eigen::Isometry3d::Identity();
   lo->Start(0, T);
   std::mt19937_64 rng(5);
@@ -465,7 +467,7 @@ double TrotInPlaceOnSoftFloor(const kin::LegKinematics& kin, const std::array<Ei
     ImuSample imu;
     imu.t_ns = t;
     imu.accel_i = Eigen::Vector3d(0, 0, 9.81) + 0.02 * testing::RandomVector(n, rng);
-    imu.gyro_i = 0.002 * testing::RandomVector(n, rng);
+    imu.gyro_i = 0.002 * testing::RandomVector(n, rng) + Eigen::Vector3d(0, 0, gyro_bias_z);
     lo->AddImu(imu);
     ContactReading c{t, {}};
     JointState js;
@@ -510,6 +512,167 @@ TEST_F(SyntheticStance, SoftFloorHeightDriftFollowsTheWeightedEndOfTheStance) {
   EXPECT_LT(dz_both, -0.015);
   EXPECT_GT(dz_both, -0.070);
   EXPECT_LT(std::abs(dz_rigid), 0.002);  // no compliance, no drift: measured -0.16 mm
+}
+
+// Stance-pair yaw bias. Two feet 0.1 m apart (FL at +0.05 m, BR at -0.05 m along x) hold for
+// 0.5 s, read every 5 ms (t = 0, 0.005, ..., 0.5: 101 readings), while the filter's orientation
+// turns at `rate` (rad/s) about the vertical, as an uncorrected gyro bias of `rate` turns it. The
+// other two feet are in the air. Returns the correction of the piece.
+std::optional<double> HoldAPair(lo::YawBiasFromFeet* y, int64_t t0_ns, double rate, double jump_at_s = -1,
+                                double jump = 0) {
+  std::optional<double> out;
+  double turned = 0;
+  for (int k = 0; k <= 101; ++k) {
+    const int64_t t = t0_ns + k * 5'000'000LL;
+    const bool holding = k <= 100;  // the 102nd reading lifts a foot: the piece ends there
+    if (jump_at_s >= 0 && k == static_cast<int>(std::lround(jump_at_s / 0.005))) {
+      turned += jump;
+      y->TurnedBy(jump);
+    }
+    const Eigen::AngleAxisd R(rate * k * 0.005 + turned, Eigen::Vector3d::UnitZ());
+    std::array<Eigen::Vector3d, kNumLegs> c;
+    c[0] = R * Eigen::Vector3d(0.05, 0, -0.07);
+    c[1] = R * Eigen::Vector3d(0.05, -0.08, -0.07);
+    c[2] = R * Eigen::Vector3d(-0.05, 0.08, -0.07);
+    c[3] = R * Eigen::Vector3d(-0.05, 0, -0.07);
+    const std::array<bool, kNumLegs> holds{holding, false, false, holding};
+    if (const auto db = y->Add(t, holds, c)) out = db;
+  }
+  return out;
+}
+
+// One piece, noise free: the line through the headings has slope `rate` exactly; the scalar
+// filter weighs it. By hand: Sxx = h^2 N (N+1) (N+2) / 12 with h = 5 ms, N = 100: 2.14625 s^2;
+// heading noise 0.0005 / 0.1 = 0.005 rad, slope variance 2.5e-5 / 2.14625 = 1.16482e-5;
+// prior 0.002^2 = 4e-6; gain 4e-6 / (4e-6 + 1.16482e-5) = 0.255620.
+TEST(YawBiasFromFeet, APieceMovesTheEstimateByTheGainTimesItsSlope) {
+  lo::YawBiasOptions o;
+  o.initial_std = 0.002;
+  o.walk = 0;
+  o.pair_noise_m = 0.0005;
+  lo::YawBiasFromFeet y(o);
+  y.Reset(0);
+  const std::optional<double> db = HoldAPair(&y, 0, 0.003);
+  ASSERT_TRUE(db.has_value());
+  EXPECT_NEAR(*db, 0.255620 * 0.003, 1e-8);
+  EXPECT_NEAR(y.variance(), 4e-6 * (1 - 0.255620), 1e-11);
+  EXPECT_EQ(y.pieces(), 1);
+}
+
+// A correction from elsewhere turns the filter mid-piece (TurnedBy): the slope is unchanged.
+TEST(YawBiasFromFeet, ATurnFromElsewhereIsNotTakenForBias) {
+  lo::YawBiasOptions o;
+  lo::YawBiasFromFeet with_jump(o), without(o);
+  with_jump.Reset(0);
+  without.Reset(0);
+  const auto a = HoldAPair(&with_jump, 0, 0.003, 0.2, 0.05);
+  const auto b = HoldAPair(&without, 0, 0.003);
+  ASSERT_TRUE(a && b);
+  EXPECT_NEAR(*a, *b, 1e-10);
+}
+
+// Off (prior std 0), too short a hold, a turning trunk, or too close a pair: nothing.
+TEST(YawBiasFromFeet, NothingWhenOffOrWhenAPairDoesNotCount) {
+  lo::YawBiasOptions off;
+  off.initial_std = 0;
+  lo::YawBiasFromFeet y_off(off);
+  y_off.Reset(0);
+  EXPECT_FALSE(HoldAPair(&y_off, 0, 0.003).has_value());
+  lo::YawBiasOptions o;
+  o.min_s = 0.6;  // longer than the 0.5 s hold
+  lo::YawBiasFromFeet y_short(o);
+  y_short.Reset(0);
+  EXPECT_FALSE(HoldAPair(&y_short, 0, 0.003).has_value());
+  // A piece during which the trunk turns faster than max_rate (0.02 rad/s) on average.
+  lo::YawBiasFromFeet y_turning(lo::YawBiasOptions{});
+  y_turning.Reset(0);
+  for (int k = 0; k <= 101; ++k) {
+    const Eigen::AngleAxisd R(0.003 * k * 0.005, Eigen::Vector3d::UnitZ());
+    std::array<Eigen::Vector3d, kNumLegs> c;
+    c.fill(Eigen::Vector3d::Zero());
+    c[0] = R * Eigen::Vector3d(0.05, 0, -0.07);
+    c[3] = R * Eigen::Vector3d(-0.05, 0, -0.07);
+    EXPECT_FALSE(y_turning.Add(k * 5'000'000LL, {k <= 100, false, false, k <= 100}, c, 0.05).has_value());
+  }
+  EXPECT_EQ(y_turning.turning(), 1);
+  EXPECT_EQ(y_turning.pieces(), 0);
+  lo::YawBiasFromFeet y(lo::YawBiasOptions{});
+  y.Reset(0);
+  std::array<Eigen::Vector3d, kNumLegs> c;
+  c.fill(Eigen::Vector3d(0, 0, -0.07));
+  c[3] = Eigen::Vector3d(0.02, 0, -0.07);  // 20 mm from FL: below the 30 mm a direction needs
+  for (int k = 0; k <= 101; ++k) {
+    EXPECT_FALSE(y.Add(k * 5'000'000LL, {k <= 100, false, false, k <= 100}, c).has_value());
+  }
+}
+
+// Repeated pieces with the correction fed back and seeded noise on one foot (0.2 mm across the
+// pair, as the options say): the estimate converges on the bias, and its error is what its own
+// variance says. One piece's slope has a std of 0.002 rad / sqrt(2.146 s^2) = 1.37 mrad/s, so
+// 100 pieces give about 0.14 mrad/s.
+TEST(YawBiasFromFeet, RepeatedPiecesConvergeOnTheBias) {
+  lo::YawBiasOptions o;
+  o.walk = 0;
+  o.pair_noise_m = 0.0002;
+  lo::YawBiasFromFeet y(o);
+  y.Reset(0);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0, 1);
+  const double bias = 0.003;
+  double estimate = 0;
+  for (int piece = 0; piece < 100; ++piece) {
+    const int64_t t0 = piece * 600'000'000LL;
+    std::optional<double> db;
+    for (int k = 0; k <= 101; ++k) {
+      const double heading = (bias - estimate) * k * 0.005;
+      const Eigen::AngleAxisd R(heading, Eigen::Vector3d::UnitZ());
+      std::array<Eigen::Vector3d, kNumLegs> c;
+      c.fill(Eigen::Vector3d::Zero());
+      c[0] = R * Eigen::Vector3d(0.05, 0, -0.07) + 0.0002 * Eigen::Vector3d(n(rng), n(rng), 0);
+      c[3] = R * Eigen::Vector3d(-0.05, 0, -0.07);
+      if (const auto d = y.Add(t0 + k * 5'000'000LL, {k <= 100, false, false, k <= 100}, c)) db = d;
+    }
+    ASSERT_TRUE(db.has_value());
+    estimate += *db;
+  }
+  std::printf("stance-pair yaw bias after 100 pieces: %.5f rad/s (true %.5f), std %.5f\n", estimate, bias,
+              std::sqrt(y.variance()));
+  EXPECT_LT(std::sqrt(y.variance()), 0.0002);
+  EXPECT_NEAR(estimate, bias, 3 * std::sqrt(y.variance()));
+  EXPECT_NEAR(y.total(), estimate, 1e-12);
+}
+
+// The trot in place on a rigid floor with a gyro bias of 0.003 rad/s about the vertical, 20 s:
+// the attitude filter alone turns 0.06 rad (3.4 deg); the stance pairs find the bias.
+double YawAfterTrotWithGyroBias(const kin::LegKinematics& kin, const std::array<Eigen::Vector3d, kNumLegs>& feet_body,
+                                double yaw_bias_initial_std, double pair_noise_m, double* bias_found) {
+  slam::LegOdometrySettings s;
+  s.yaw_bias_initial_std = yaw_bias_initial_std;
+  s.yaw_pair_noise_m = pair_noise_m;
+  lo::LegOdometry lo(s, kin);
+  TrotInPlaceOnSoftFloor(kin, feet_body, &lo, 20, 0.0, 0.003);
+  *bias_found = lo.attitude().gyro_bias().z();
+  const Eigen::Matrix3d R = lo.T_w_body().linear();
+  return std::atan2(R(1, 0), R(0, 0));
+}
+
+// With the pair noise set to these synthetic encoders' (1 mrad on 50 mm legs: about 0.1 mm) the
+// bias is found within seconds; the default (0.3 mm, for the simulator's creeping soles) weighs
+// each stance less and finds it more slowly.
+TEST_F(SyntheticStance, StancePairsFindTheGyroBiasAboutTheVertical) {
+  double bias_off = 0, bias_on = 0, bias_default = 0;
+  const double yaw_off = YawAfterTrotWithGyroBias(kin_, feet_body_, 0, 0.0005, &bias_off);
+  const double yaw_on = YawAfterTrotWithGyroBias(kin_, feet_body_, 0.002, 0.0001, &bias_on);
+  const double yaw_default = YawAfterTrotWithGyroBias(kin_, feet_body_, 0.002, 0.0003, &bias_default);
+  std::printf("trot in place 20 s, gyro bias 3 mrad/s about z: yaw error %.2f deg with the stance pairs (bias "
+              "found %.2f mrad/s; %.2f deg and %.2f mrad/s with the default pair noise), %.2f deg without\n",
+              yaw_on * 180 / M_PI, bias_on * 1e3, yaw_default * 180 / M_PI, bias_default * 1e3, yaw_off * 180 / M_PI);
+  EXPECT_NEAR(yaw_off, 0.06, 0.003);
+  EXPECT_LT(std::abs(yaw_on), 0.1 * std::abs(yaw_off));
+  EXPECT_NEAR(bias_on, 0.003, 0.0003);
+  // Measured 0.71 deg and 2.86 mrad/s with the default.
+  EXPECT_LT(std::abs(yaw_default), 0.4 * std::abs(yaw_off));
+  EXPECT_NEAR(bias_default, 0.003, 0.0005);
 }
 
 TEST(SlipScore, EventsFromSamplesAndTheirMatching) {

@@ -1,6 +1,7 @@
 // Accuracy targets of the SLAM core (issue 3) against ground truth: the full static_room and
 // long_loop scenarios with live stereo SLAM (sync mapping, deterministic). ATE RMSE is at most
 // 0.3% (static_room) and 0.6% (long_loop) of the path, and no frame is lost in these static scenes.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -54,6 +55,16 @@ TEST(SlamAccuracy, StaticRoomWithinPointThreePercentOfPath) {
               m["lo"]["update_ms_mean"].as<double>());
   EXPECT_LE(drift, 3.4);
   EXPECT_LE(m["lo"]["ate"]["rmse_m"].as<double>(), 0.07);
+  // The gyro bias about the vertical, found from pairs of stance feet (session 18): measured
+  // 0.96 mrad/s against the simulated gyro's 1.11 at the end (the filter without it keeps the
+  // start's 0: an error of 1.11), 137 pieces used, 141 left out while turning; yaw drift 3.8 deg
+  // (5.5 without). The bound is about 2.5x the error measured.
+  const double bias = m["lo"]["gyro_bias_z_radps"].as<double>();
+  const double true_bias = m["lo"]["true_gyro_bias_z_radps"].as<double>();
+  std::printf("gyro bias about z: %.2f mrad/s found, %.2f true; %d stance-pair pieces used, %d turning\n", bias * 1e3,
+              true_bias * 1e3, m["lo"]["yaw_bias_pieces"].as<int>(), m["lo"]["yaw_bias_turning"].as<int>());
+  EXPECT_LT(std::abs(bias - true_bias), 0.0004);
+  EXPECT_GE(m["lo"]["yaw_bias_pieces"].as<int>(), 50);
 }
 
 TEST(SlamAccuracy, LongLoopWithinPointSixPercentOfPath) {

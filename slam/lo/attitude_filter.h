@@ -45,6 +45,10 @@ class AttitudeFilter {
   // the corrected orientation).
   void SetOrientation(const Eigen::Quaterniond& q_w_b);
 
+  // Adds db (rad/s, body frame) to the gyro bias estimate: a bias found from elsewhere (the
+  // stance feet observe the rate about the vertical, which gravity does not).
+  void AddGyroBias(const Eigen::Vector3d& db) { bias_ += db; }
+
   const Eigen::Quaterniond& q_w_b() const { return q_w_b_; }
   // The orientation at t_ns, extrapolated from the last sample with its bias-corrected rate.
   Eigen::Quaterniond OrientationAt(int64_t t_ns) const;

@@ -30,8 +30,20 @@ AttitudeFilterOptions AttitudeOptionsOf(const slam::LegOdometrySettings& s) {
   return o;
 }
 
+YawBiasOptions YawBiasOptionsOf(const slam::LegOdometrySettings& s) {
+  YawBiasOptions o;
+  o.initial_std = s.yaw_bias_initial_std;
+  o.walk = s.yaw_bias_walk;
+  o.pair_noise_m = s.yaw_pair_noise_m;
+  o.min_s = s.yaw_pair_min_s;
+  o.max_s = s.yaw_pair_max_s;
+  o.gate_chi2 = s.yaw_pair_gate_chi2;
+  o.max_rate = s.yaw_pair_max_rate_radps;
+  return o;
+}
+
 LegOdometry::LegOdometry(const slam::LegOdometrySettings& settings, const kin::LegKinematics& kin)
-    : settings_(settings), kin_(kin), attitude_(AttitudeOptionsOf(settings)) {
+    : settings_(settings), kin_(kin), attitude_(AttitudeOptionsOf(settings)), yaw_bias_(YawBiasOptionsOf(settings)) {
   if (settings_.contact != "schedule" && settings_.contact != "touch" && settings_.contact != "estimated") {
     throw InputError("lo.contact must be schedule, touch or estimated, not '" + settings_.contact + "'");
   }
@@ -50,6 +62,9 @@ void LegOdometry::Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body) {
   window_.clear();
   roll_w_.fill(Eigen::Vector3d::Zero());
   for (FootStatus& f : feet_) f = FootStatus{true, false, 0, t_ns};
+  yaw_bias_.Reset(t_ns);
+  rolled_w_.fill(Eigen::Vector3d::Zero());
+  last_joints_ns_.reset();
 }
 
 Eigen::Isometry3d LegOdometry::T_w_body() const {
@@ -62,6 +77,9 @@ Eigen::Isometry3d LegOdometry::T_w_body() const {
 void LegOdometry::CorrectPose(const Eigen::Isometry3d& T_w_body) {
   if (!started_) return;
   kf_.Translate(T_w_body.translation() - kf_.position());
+  // The turn about the vertical, for the stance-pair headings measured so far.
+  const Eigen::Matrix3d turn = T_w_body.linear() * attitude_.q_w_b().toRotationMatrix().transpose();
+  yaw_bias_.TurnedBy(std::atan2(turn(1, 0), turn(0, 0)));
   attitude_.SetOrientation(Eigen::Quaterniond(T_w_body.linear()));
   // The window's body positions move with the correction, so that the next windowed velocity
   // does not see it as motion.
@@ -182,6 +200,22 @@ void LegOdometry::AddJoints(const JointState& js) {
                                              : Eigen::Vector3d::Ones();
     kf_.UpdateFootPosition(i, rel_w[i], settings_.kin_position_noise_m * inflate);
     if (f.contact && !f.slipping && v_foot[i]) kf_.UpdateVelocity(*v_foot[i], v_std[i] * inflate);
+  }
+  // The gyro bias about the vertical from pairs of feet that hold (settled, not slipping).
+  const double reading_dt = last_joints_ns_ ? (js.t_ns - *last_joints_ns_) * 1e-9 : 0.0;
+  last_joints_ns_ = js.t_ns;
+  std::array<bool, kNumLegs> holds{};
+  std::array<Eigen::Vector3d, kNumLegs> contact_w;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const FootStatus& f = feet_[i];
+    if (!f.contact || f.touchdown_ns == js.t_ns) rolled_w_[i].setZero();
+    else rolled_w_[i] += roll_w_[i] * reading_dt;
+    holds[i] = f.contact && !f.slipping && js.t_ns - f.touchdown_ns >= touchdown_ns;
+    contact_w[i] = rel_w[i] - rolled_w_[i];
+  }
+  const double yaw_rate = (R * w_b).z();
+  if (const std::optional<double> db = yaw_bias_.Add(js.t_ns, holds, contact_w, yaw_rate)) {
+    attitude_.AddGyroBias(R.transpose() * Eigen::Vector3d(0, 0, *db));
   }
   // Keep the readings of the last window (and the one just before it).
   window_.push_back(WindowSample{js.t_ns, kf_.position(), rel_w, roll_w_});

@@ -14,6 +14,7 @@
 #include "kinematics/leg_kinematics.h"
 #include "slam/lo/attitude_filter.h"
 #include "slam/lo/leg_imu_kf.h"
+#include "slam/lo/yaw_bias_from_feet.h"
 #include "slam/measurements/contact_reading.h"
 #include "slam/measurements/ground_truth_pose.h"
 #include "slam/measurements/imu_sample.h"
@@ -61,6 +62,7 @@ class LegOdometry {
   const std::array<FootStatus, kNumLegs>& feet() const { return feet_; }
   const LegImuKf& filter() const { return kf_; }
   const AttitudeFilter& attitude() const { return attitude_; }
+  const YawBiasFromFeet& yaw_bias() const { return yaw_bias_; }
   // Mean time of one AddImu + AddJoints pair so far (ms), for the run summary.
   double mean_update_ms() const { return updates_ ? update_ms_sum_ / updates_ : 0.0; }
 
@@ -88,6 +90,11 @@ class LegOdometry {
   };
   std::deque<WindowSample> window_;
   std::array<FootStatus, kNumLegs> feet_{};
+  YawBiasFromFeet yaw_bias_;
+  // Rolling displacement of each foot's centre since its touch-down (m, world): the contact
+  // point is the centre less it.
+  std::array<Eigen::Vector3d, kNumLegs> rolled_w_{};
+  std::optional<int64_t> last_joints_ns_;
   double update_ms_sum_ = 0;
   long updates_ = 0;
 };

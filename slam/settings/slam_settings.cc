@@ -178,6 +178,13 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("contact_height_m", &lo->contact_height_m, NumberRange::Positive());
   m->Integer("fusion_min_inliers", &lo->fusion_min_inliers, kCount0);
   m->Number("slip_speed_mps", &lo->slip_speed_mps, NumberRange::Positive());
+  m->Number("yaw_bias_initial_std", &lo->yaw_bias_initial_std, NumberRange::NonNegative());
+  m->Number("yaw_bias_walk", &lo->yaw_bias_walk, NumberRange::NonNegative());
+  m->Number("yaw_pair_noise_m", &lo->yaw_pair_noise_m, NumberRange::Positive());
+  m->Number("yaw_pair_min_s", &lo->yaw_pair_min_s, NumberRange::Positive());
+  m->Number("yaw_pair_max_s", &lo->yaw_pair_max_s, NumberRange::Positive());
+  m->Number("yaw_pair_max_rate_radps", &lo->yaw_pair_max_rate_radps, NumberRange::Positive());
+  m->Number("yaw_pair_gate_chi2", &lo->yaw_pair_gate_chi2, NumberRange::Positive());
   m->RejectUnknownKeys();
 }
 
@@ -360,6 +367,13 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "contact_height_m", lo.contact_height_m);
   EmitInt(out, "fusion_min_inliers", lo.fusion_min_inliers);
   EmitNumber(out, "slip_speed_mps", lo.slip_speed_mps);
+  EmitNumber(out, "yaw_bias_initial_std", lo.yaw_bias_initial_std);
+  EmitNumber(out, "yaw_bias_walk", lo.yaw_bias_walk);
+  EmitNumber(out, "yaw_pair_noise_m", lo.yaw_pair_noise_m);
+  EmitNumber(out, "yaw_pair_min_s", lo.yaw_pair_min_s);
+  EmitNumber(out, "yaw_pair_max_s", lo.yaw_pair_max_s);
+  EmitNumber(out, "yaw_pair_max_rate_radps", lo.yaw_pair_max_rate_radps);
+  EmitNumber(out, "yaw_pair_gate_chi2", lo.yaw_pair_gate_chi2);
   out << YAML::EndMap;
 
   out << YAML::EndMap;

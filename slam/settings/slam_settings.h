@@ -141,6 +141,16 @@ struct LegOdometrySettings {
   // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
   // stance foot agrees with the filter (m/s).
   double slip_speed_mps = 0.05;
+  // Gyro bias about the vertical, from pairs of stance feet: two feet that hold keep the
+  // horizontal direction between them fixed in the world, so its turn in the filter's world
+  // frame over a stance is the yaw the gyro bias added (slam/lo/yaw_bias_from_feet.h).
+  double yaw_bias_initial_std = 0.002;  // prior std of that bias at the start (rad/s); 0 = off
+  double yaw_bias_walk = 0.0001;        // its random walk (rad/s/sqrt(s))
+  double yaw_pair_noise_m = 0.0003;     // noise of the horizontal vector between two feet per reading (m)
+  double yaw_pair_min_s = 0.1;          // a pair's stance together must last this long to count (s)
+  double yaw_pair_max_s = 1.0;          // and is cut into pieces this long while it lasts (s)
+  double yaw_pair_max_rate_radps = 0.02;  // a piece turning faster than this on average is not used (rad/s)
+  double yaw_pair_gate_chi2 = 9;        // a piece further from the estimate than this is dropped (chi-square, 1 dof)
 };
 
 struct SlamSettings {
