@@ -1,6 +1,7 @@
 #pragma once
 // Leg odometry with the IMU (paper eqs. 5-7): the attitude filter, the linear Kalman filter of
-// eq. 5, contact from the configured source, and the slip gate. Inputs are the measurement
+// eq. 5, contact from the configured source, the slip gate, and the gyro bias about the vertical
+// from pairs of stance feet (yaw_bias_from_feet.h). Inputs are the measurement
 // structs only (IMU samples, encoder readings, contact readings); the leg kinematics come from
 // the URDF through kinematics/. JointState::contact is simulator truth and is never read here.
 #include <array>
