@@ -1,6 +1,7 @@
 // Leg odometry + IMU: the cost of one IMU sample and one encoder reading through the attitude
 // filter and the 18-state Kalman filter (issue 8 target: <= 0.05 ms per IMU sample). The robot
-// stands on the URDF's legs with noisy sensors; all four feet in stance (the most updates).
+// stands on the URDF's legs with noisy sensors; all four feet in stance (the most updates, and
+// all six stance pairs of the yaw-bias estimator). Argument 1: the estimator on (default), 0: off.
 #include <random>
 
 #include <benchmark/benchmark.h>
@@ -15,6 +16,7 @@ void BM_LegOdometrySample(benchmark::State& state) {
   const kin::LegKinematics kin = kin::LegKinematics::FromUrdfFile(std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.urdf");
   slam::LegOdometrySettings settings;
   settings.contact = "schedule";
+  if (state.range(0) == 0) settings.yaw_bias_initial_std = 0;
   lo::LegOdometry lo(settings, kin);
   lo.Start(0, Eigen::Isometry3d(Eigen::Translation3d(0, 0, 0.075)));
   std::array<double, kNumJoints> q{};
@@ -43,7 +45,7 @@ void BM_LegOdometrySample(benchmark::State& state) {
     benchmark::DoNotOptimize(lo.T_w_body());
   }
 }
-BENCHMARK(BM_LegOdometrySample);
+BENCHMARK(BM_LegOdometrySample)->Arg(1)->Arg(0);
 
 }  // namespace
 }  // namespace viqu
