@@ -606,6 +606,37 @@ TEST(YawBiasFromFeet, NothingWhenOffOrWhenAPairDoesNotCount) {
   }
 }
 
+// A robot standing on all four feet: the six pairs reach max_s (1 s) at the same reading. They
+// share feet, so one update is made, with the best piece: a diagonal (FL-BR, 0.128062 m). By hand,
+// readings at 5 ms for t = 0 .. 0.995 s (N = 199): Sxx = h^2 N (N+1) (N+2) / 12 = 16.66625 s^2;
+// heading noise 0.0003 / 0.128062 = 2.34262e-3 rad, slope variance 3.29283e-7; prior 4e-6 (no
+// walk); gain 4e-6 / (4e-6 + 3.29283e-7) = 0.923941.
+TEST(YawBiasFromFeet, PiecesEndingTogetherMakeOneUpdate) {
+  lo::YawBiasOptions o;
+  o.walk = 0;
+  lo::YawBiasFromFeet y(o);
+  y.Reset(0);
+  const double rate = 0.003;
+  std::optional<double> db;
+  int updates = 0;
+  for (int k = 0; k <= 200; ++k) {
+    const Eigen::AngleAxisd R(rate * k * 0.005, Eigen::Vector3d::UnitZ());
+    std::array<Eigen::Vector3d, kNumLegs> c;
+    c[0] = R * Eigen::Vector3d(0.05, 0.04, -0.07);
+    c[1] = R * Eigen::Vector3d(0.05, -0.04, -0.07);
+    c[2] = R * Eigen::Vector3d(-0.05, 0.04, -0.07);
+    c[3] = R * Eigen::Vector3d(-0.05, -0.04, -0.07);
+    if (const auto d = y.Add(k * 5'000'000LL, {true, true, true, true}, c)) {
+      db = d;
+      ++updates;
+    }
+  }
+  ASSERT_TRUE(db.has_value());
+  EXPECT_EQ(updates, 1);
+  EXPECT_EQ(y.pieces(), 1);
+  EXPECT_NEAR(*db, 0.923941 * rate, 1e-8);
+}
+
 // Repeated pieces with the correction fed back and seeded noise on one foot (0.2 mm across the
 // pair, as the options say): the estimate converges on the bias, and its error is what its own
 // variance says. One piece's slope has a std of 0.002 rad / sqrt(2.146 s^2) = 1.37 mrad/s, so

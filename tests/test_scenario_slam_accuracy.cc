@@ -56,9 +56,9 @@ TEST(SlamAccuracy, StaticRoomWithinPointThreePercentOfPath) {
   EXPECT_LE(drift, 3.4);
   EXPECT_LE(m["lo"]["ate"]["rmse_m"].as<double>(), 0.07);
   // The gyro bias about the vertical, found from pairs of stance feet (session 18): measured
-  // 0.96 mrad/s against the simulated gyro's 1.11 at the end (the filter without it keeps the
-  // start's 0: an error of 1.11), 137 pieces used, 141 left out while turning; yaw drift 3.8 deg
-  // (5.5 without). The bound is about 2.5x the error measured.
+  // 0.98 mrad/s against the simulated gyro's 1.11 at the end (the filter without it keeps the
+  // start's 0: an error of 1.11), 92 pieces used, 141 left out while turning; yaw drift 3.7 deg
+  // (5.5 without). The bound is about 3x the error measured.
   const double bias = m["lo"]["gyro_bias_z_radps"].as<double>();
   const double true_bias = m["lo"]["true_gyro_bias_z_radps"].as<double>();
   std::printf("gyro bias about z: %.2f mrad/s found, %.2f true; %d stance-pair pieces used, %d turning\n", bias * 1e3,

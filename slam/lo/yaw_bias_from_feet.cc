@@ -27,7 +27,7 @@ void YawBiasFromFeet::TurnedBy(double dyaw) {
   }
 }
 
-std::optional<double> YawBiasFromFeet::Finish(Pair* p, int64_t t_ns) {
+std::optional<YawBiasFromFeet::Piece> YawBiasFromFeet::Finish(Pair* p, int64_t t_ns) {
   p->active = false;
   const double duration = (t_ns - p->t0_ns) * 1e-9;
   if (p->n < 3 || duration < opt_.min_s) return std::nullopt;
@@ -37,17 +37,19 @@ std::optional<double> YawBiasFromFeet::Finish(Pair* p, int64_t t_ns) {
     ++turning_;
     return std::nullopt;
   }
-  const double slope = (p->sty - p->st * p->sy / p->n) / sxx;  // rad/s
-  const double heading_std = opt_.pair_noise_m / p->length;     // rad per reading
-  const double slope_var = heading_std * heading_std / sxx;
+  const double heading_std = opt_.pair_noise_m / p->length;  // rad per reading
+  return Piece{(p->sty - p->st * p->sy / p->n) / sxx, heading_std * heading_std / sxx};
+}
+
+std::optional<double> YawBiasFromFeet::Update(const Piece& piece, int64_t t_ns) {
   var_ += opt_.walk * opt_.walk * (t_ns - var_t_ns_) * 1e-9;
   var_t_ns_ = t_ns;
-  if (slope * slope > opt_.gate_chi2 * (var_ + slope_var)) {
+  if (piece.slope * piece.slope > opt_.gate_chi2 * (var_ + piece.variance)) {
     ++rejected_;
     return std::nullopt;
   }
-  const double gain = var_ / (var_ + slope_var);
-  const double correction = gain * slope;
+  const double gain = var_ / (var_ + piece.variance);
+  const double correction = gain * piece.slope;
   var_ *= 1 - gain;
   total_ += correction;
   ++pieces_;
@@ -58,22 +60,21 @@ std::optional<double> YawBiasFromFeet::Add(int64_t t_ns, const std::array<bool, 
                                            const std::array<Eigen::Vector3d, kNumLegs>& contact_w,
                                            double yaw_rate) {
   if (!enabled()) return std::nullopt;
-  std::optional<double> correction;
+  std::optional<Piece> best;  // of the pieces ending at this reading
+  auto end_piece = [&](Pair* p) {
+    const std::optional<Piece> piece = Finish(p, t_ns);
+    if (piece && (!best || piece->variance < best->variance)) best = piece;
+  };
   int k = 0;
   for (int i = 0; i < kNumLegs; ++i) {
     for (int j = i + 1; j < kNumLegs; ++j, ++k) {
       Pair& p = pairs_[k];
       const Eigen::Vector2d d = (contact_w[i] - contact_w[j]).head<2>();
-      const bool usable = holds[i] && holds[j] && d.norm() >= kMinPairLength_m;
-      if (!usable) {
-        if (p.active) {
-          if (const auto c = Finish(&p, t_ns)) correction = correction.value_or(0) + *c;
-        }
+      if (!holds[i] || !holds[j] || d.norm() < kMinPairLength_m) {
+        if (p.active) end_piece(&p);
         continue;
       }
-      if (p.active && (t_ns - p.t0_ns) * 1e-9 >= opt_.max_s) {
-        if (const auto c = Finish(&p, t_ns)) correction = correction.value_or(0) + *c;
-      }
+      if (p.active && (t_ns - p.t0_ns) * 1e-9 >= opt_.max_s) end_piece(&p);
       if (!p.active) {
         p = Pair{};
         p.active = true;
@@ -92,13 +93,11 @@ std::optional<double> YawBiasFromFeet::Add(int64_t t_ns, const std::array<bool, 
       p.rate_sum += yaw_rate;
     }
   }
+  if (!best) return std::nullopt;
+  const std::optional<double> correction = Update(*best, t_ns);
   if (correction) {
     // The other pairs' headings were measured with the old bias: start them again.
-    for (Pair& p : pairs_) {
-      if (p.active) {
-        p.active = false;
-      }
-    }
+    for (Pair& p : pairs_) p.active = false;
   }
   return correction;
 }

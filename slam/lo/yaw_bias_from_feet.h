@@ -7,7 +7,9 @@
 // filter's orientation, the feet's rolling taken out) is fitted with a line; its slope, at the end
 // of the pair's stance, measures the remaining bias, and a scalar Kalman filter (a random-walk bias
 // with a prior) weighs it by the fit's variance; a slope too far from the estimate for that
-// variance (a foot that slid unflagged) is dropped. Pure arithmetic on the inputs; LegOdometry says
+// variance (a foot that slid unflagged) is dropped. Pieces that end at the same reading (the six
+// pairs of a standing robot) share feet and their creep, so only the best of them (the smallest
+// variance) is used, once. Pure arithmetic on the inputs; LegOdometry says
 // which feet hold and applies the result to the attitude filter.
 #include <array>
 #include <cstdint>
@@ -25,8 +27,8 @@ struct YawBiasOptions {
   double pair_noise_m = 0.0003;  // noise of one reading of the horizontal vector between two feet (m)
   double min_s = 0.1;          // a pair standing together for less is not used (s)
   double max_s = 1.0;          // a longer one is cut into pieces this long (s)
-  double max_rate = 0.02;      // a piece whose mean turn rate about the vertical exceeds this is not used (rad/s)
-  double gate_chi2 = 9;        // a piece whose slope is further from the estimate than this (chi-square, 1 dof) is dropped
+  double max_rate = 0.02;      // a piece turning faster than this on average is not used (rad/s)
+  double gate_chi2 = 9;        // a piece further from the estimate than this is dropped (chi-square, 1 dof)
 };
 
 class YawBiasFromFeet {
@@ -40,8 +42,8 @@ class YawBiasFromFeet {
   // contact_w[i] is its contact point relative to the body in the world frame of the filter's
   // orientation (m); yaw_rate the trunk's turn rate about the vertical (rad/s): while the robot
   // turns, its stance feet twist on the ground (by about 6% of the turn rate, against it, on
-  // this floor), so pieces that turn are not used. Returns the correction to add to the bias estimate about the world's
-  // vertical (rad/s) when a pair's piece ended with this reading and moved the estimate.
+  // this floor), so pieces that turn are not used. Returns the correction to add to the bias
+  // estimate about the world's vertical (rad/s) when a piece ended with this reading and moved it.
   std::optional<double> Add(int64_t t_ns, const std::array<bool, kNumLegs>& holds,
                             const std::array<Eigen::Vector3d, kNumLegs>& contact_w, double yaw_rate = 0);
 
@@ -69,8 +71,14 @@ class YawBiasFromFeet {
   };
   static constexpr int kPairs = kNumLegs * (kNumLegs - 1) / 2;
 
-  // Ends pair p's piece at t_ns; returns the correction if it counted.
-  std::optional<double> Finish(Pair* p, int64_t t_ns);
+  // The line fit of a piece that counts: its slope (rad/s) and the slope's variance.
+  struct Piece {
+    double slope = 0, variance = 0;
+  };
+  // Ends pair p's piece at t_ns; its fit if it lasted and did not turn.
+  std::optional<Piece> Finish(Pair* p, int64_t t_ns);
+  // The scalar filter's update at t_ns with one piece; the correction unless the gate drops it.
+  std::optional<double> Update(const Piece& piece, int64_t t_ns);
 
   YawBiasOptions opt_;
   std::array<Pair, kPairs> pairs_{};
