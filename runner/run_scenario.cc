@@ -136,7 +136,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
     if (!pyramid.empty()) throw InputError(settings->pyramid_where + ": " + pyramid);
     const slam::DynamicSettings& d = settings->dynamic;
     resolved.slam.mode = settings->mode;
-    resolved.slam.dynamic = DynamicConfig{d.method, d.alpha, d.beta, d.gamma, d.th_d, d.window_s, d.window_n};
+    // (the other dynamic keys are written as the scenario gave them; slam_settings.yaml holds all)
+    resolved.slam.dynamic = DynamicConfig{d.method, d.alpha, d.beta, d.gamma, d.th_d, d.window_s, d.window_n,
+                                          s.slam.dynamic.more};
   }
   // Everything is checked: from here on the run writes its folder (common/run_folder.h).
   const std::string out_dir = opt.out_dir.empty() ? "runs/" + s.name : opt.out_dir;

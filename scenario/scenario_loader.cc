@@ -311,6 +311,30 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   if (d.Integer("window_n", &s->dynamic.window_n, NumberRange::Closed(2, 10000))) {
     s->settings_overrides.push_back("dynamic.window_n=" + std::to_string(s->dynamic.window_n));
   }
+  // The rest of the block: as for slam.lo below, the keys and their kinds are checked here, each
+  // value's range by the SLAM settings loader when the run starts.
+  auto more = [&](YamlMapReader* r, const std::string& prefix, std::initializer_list<const char*> keys) {
+    for (const char* key : keys) {
+      double v = 0;
+      if (r->Number(key, &v, NumberRange::NonNegative())) s->dynamic.more.emplace_back(prefix + key, YamlNumberText(v));
+    }
+  };
+  more(&d, "", {"forget_s"});
+  YamlMapReader prior = d.Map("prior");
+  more(&prior, "prior.", {"person", "box", "ball"});
+  prior.RejectUnknownKeys();
+  YamlMapReader adaptive = d.Map("adaptive");
+  more(&adaptive, "adaptive.",
+       {"lag_s", "threshold_m", "k_sigma", "disparity_sigma_px", "pixel_sigma_px", "max_speed_mps", "still_max_m",
+        "hold_s", "stop_max_m", "foreground_band_m", "static_pose_min_share"});
+  for (const char* key : {"confirm_frames", "min_matches", "interior_px", "max_hamming"}) {
+    int v = 0;
+    if (adaptive.Integer(key, &v, NumberRange::NonNegative())) {
+      s->dynamic.more.emplace_back(std::string("adaptive.") + key, std::to_string(v));
+    }
+  }
+  adaptive.RejectUnknownKeys();
+  for (const auto& [key, value] : s->dynamic.more) s->settings_overrides.push_back("dynamic." + key + "=" + value);
   d.RejectUnknownKeys();
   // slam.lo: the leg-odometry settings. The SLAM settings loader checks each value's range when
   // the run starts; here the keys and their kinds are checked, so that a misspelt key is an error

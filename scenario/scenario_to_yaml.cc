@@ -163,6 +163,20 @@ void Slam(YAML::Emitter& out, const SlamConfig& s) {
   EmitNumber(out, "th_d", s.dynamic.th_d);
   EmitNumber(out, "window_s", s.dynamic.window_s);
   EmitInt(out, "window_n", s.dynamic.window_n);
+  // The other keys present, nested as written (forget_s, prior.*, adaptive.*).
+  for (const char* block : {"", "prior.", "adaptive."}) {
+    const std::string prefix = block;
+    bool open = false;
+    for (const auto& [path, value] : s.dynamic.more) {
+      if (path.rfind(prefix, 0) != 0 || (prefix.empty() && path.find('.') != std::string::npos)) continue;
+      if (!prefix.empty() && !open) {
+        out << YAML::Key << prefix.substr(0, prefix.size() - 1) << YAML::Value << YAML::BeginMap;
+        open = true;
+      }
+      out << YAML::Key << path.substr(prefix.size()) << YAML::Value << value;
+    }
+    if (open) out << YAML::EndMap;
+  }
   out << YAML::EndMap;
   if (!s.lo.empty()) {
     out << YAML::Key << "lo" << YAML::Value << YAML::Flow << YAML::BeginMap;

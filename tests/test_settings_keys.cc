@@ -1,8 +1,9 @@
-// The scenario's slam.lo keys mirror the SLAM settings' lo.* keys. The scenario loader cannot
-// depend on the SLAM library, so it lists those keys itself (scenario_loader.cc); this test
-// links both and checks that every lo.* setting the SLAM settings write can be set from a
-// scenario and reaches the SLAM settings, so that a key added to one and not the other fails
-// here instead of in a user's sweep.
+// The scenario's slam.lo and slam.dynamic keys mirror the SLAM settings' lo.* and dynamic.* keys.
+// The scenario loader cannot depend on the SLAM library, so it lists those keys itself
+// (scenario_loader.cc); this test links both and checks that every such setting the SLAM
+// settings write can be set from a scenario, reaches the SLAM settings and is written back into
+// the run folder's scenario.yaml, so that a key added to one and not the other fails here instead
+// of in a user's sweep.
 #include <string>
 #include <vector>
 
@@ -35,6 +36,64 @@ TEST(SettingsKeys, EveryLegOdometrySettingCanBeSetFromAScenario) {
     ++keys;
   }
   EXPECT_GE(keys, 26);  // 26 lo keys when written
+}
+
+// The leaves of a YAML map as (dotted path, value).
+void Leaves(const YAML::Node& node, const std::string& prefix, std::vector<std::pair<std::string, std::string>>* out) {
+  for (const auto& kv : node) {
+    const std::string path = prefix + kv.first.as<std::string>();
+    if (kv.second.IsMap()) {
+      Leaves(kv.second, path + ".", out);
+    } else {
+      out->emplace_back(path, kv.second.as<std::string>());
+    }
+  }
+}
+
+TEST(SettingsKeys, EveryDynamicObjectSettingCanBeSetFromAScenario) {
+  const slam::SlamSettings defaults = slam::LoadSlamSettings(slam::DefaultSlamSettingsPath());
+  const YAML::Node dynamic = YAML::Load(slam::SlamSettingsToYaml(defaults))["dynamic"];
+  ASSERT_TRUE(dynamic && dynamic.IsMap());
+  std::vector<std::pair<std::string, std::string>> leaves;
+  Leaves(dynamic, "", &leaves);
+  const std::string scenario = std::string(VIQU_SOURCE_DIR) + "/scenarios/static_room.yaml";
+  for (const auto& [key, value] : leaves) {
+    SCOPED_TRACE("slam.dynamic." + key);
+    Scenario s;
+    ASSERT_NO_THROW(s = LoadScenario(scenario, {"slam.dynamic." + key + "=" + value}));
+    bool passed_on = false;
+    for (const std::string& o : s.slam.settings_overrides) passed_on = passed_on || o == "dynamic." + key + "=" + value;
+    EXPECT_TRUE(passed_on);
+    EXPECT_NO_THROW(slam::LoadSlamSettings(slam::DefaultSlamSettingsPath(), s.slam.settings_overrides));
+    // Written back where it was read from.
+    const YAML::Node written = YAML::Load(ScenarioToYaml(s))["slam"]["dynamic"];
+    YAML::Node at = YAML::Clone(written);
+    size_t begin = 0;
+    for (size_t dot = key.find('.'); ; dot = key.find('.', begin)) {
+      at = at[key.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin)];
+      if (dot == std::string::npos) break;
+      begin = dot + 1;
+    }
+    ASSERT_TRUE(at.IsScalar());
+    if (key == "method") {
+      EXPECT_EQ(at.as<std::string>(), value);
+    } else {
+      EXPECT_DOUBLE_EQ(at.as<double>(), std::stod(value));
+    }
+  }
+  EXPECT_GE(leaves.size(), 26u);  // 26 dynamic keys when written (method, 7 of eq. 1-4, forget_s, 3 priors, 15 adaptive)
+}
+
+TEST(SettingsKeys, AMisspeltAdaptiveKeyIsAnErrorAtItsLine) {
+  const std::string scenario = std::string(VIQU_SOURCE_DIR) + "/scenarios/static_room.yaml";
+  try {
+    LoadScenario(scenario, {"slam.dynamic.adaptive.treshold_m=0.01"});
+    FAIL() << "a misspelt key was accepted";
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("treshold_m"), std::string::npos) << what;
+    EXPECT_NE(what.find("threshold_m"), std::string::npos) << what;  // the keys it expected
+  }
 }
 
 }  // namespace
