@@ -60,14 +60,20 @@ const std::vector<Plane>& Scene(int variant = 0) {
 }
 
 // Image of the scene from a camera with pose T_c_w: each plane warped by its homography, the
-// near one drawn over the far one.
-cv::Mat Render(const Eigen::Isometry3d& T_c_w, int variant) {
+// near one drawn over the far one, the near panel moved by `panel_shift` (m, world). When
+// `instance_id` is given it receives the near panel's pixels as instance 1 (CV_16U).
+cv::Mat Render(const Eigen::Isometry3d& T_c_w, int variant, const Eigen::Vector3d& panel_shift = Eigen::Vector3d::Zero(),
+               cv::Mat* instance_id = nullptr) {
   Eigen::Matrix3d K;
   K << kF, 0, (kW - 1) / 2.0, 0, kF, (kH - 1) / 2.0, 0, 0, 1;
   cv::Mat grey(kH, kW, CV_8U, cv::Scalar(128));
-  for (const Plane& pl : Scene(variant)) {
+  if (instance_id) *instance_id = cv::Mat(kH, kW, CV_16U, cv::Scalar(0));
+  const std::vector<Plane>& planes = Scene(variant);
+  for (size_t n = 0; n < planes.size(); ++n) {
+    const Plane& pl = planes[n];
+    const bool panel = n + 1 == planes.size();
     Eigen::Matrix3d A;  // texture pixel (j, i, 1) -> world point
-    A << pl.du, pl.dv, pl.origin;
+    A << pl.du, pl.dv, pl.origin + (panel ? panel_shift : Eigen::Vector3d::Zero());
     Eigen::Matrix3d M = T_c_w.rotation() * A;
     M.col(2) += T_c_w.translation();
     const Eigen::Matrix3d H = K * M;
@@ -80,6 +86,7 @@ cv::Mat Render(const Eigen::Isometry3d& T_c_w, int variant) {
     cv::warpPerspective(cv::Mat(pl.texture.size(), CV_8U, cv::Scalar(255)), mask, Hcv, grey.size(), cv::INTER_NEAREST,
                         cv::BORDER_CONSTANT);
     warped.copyTo(grey, mask);
+    if (panel && instance_id) instance_id->setTo(cv::Scalar(1), mask);
   }
   cv::Mat rgb;
   cv::cvtColor(grey, rgb, cv::COLOR_GRAY2RGB);
@@ -338,6 +345,53 @@ TEST(SlamSystem, RelocalisationIsDeterministic) {
   EXPECT_EQ(a.status, slam::TrackStatus::kRelocalised);
   EXPECT_EQ(a.inliers, b.inliers);
   EXPECT_TRUE(a.T_w_c.matrix() == b.T_w_c.matrix());
+}
+
+// The near panel, labelled a box, stands for 30 frames and then slides sideways at 0.4 m/s. The
+// adaptive dynamic stage judges it dynamic a few frames later; on that frame its features,
+// which tracking has already used, leave the frame's pose too (Tracker::ReposeWithout): the
+// report counts them all dropped and the pose stays on the known path on every frame.
+TEST(SlamSystem, AnObjectJudgedDynamicLeavesTheDecisionFramesPose) {
+  slam::SlamSettings settings;
+  settings.mode = "visual_dynamic";
+  settings.dynamic.method = "adaptive";
+  slam::SlamSystem system(settings);
+  constexpr int kStill = 30;
+  int decided_at = -1;
+  double worst_m = 0;
+  for (int k = 0; k < kFrames; ++k) {
+    const Eigen::Vector3d shift(k < kStill ? 0.0 : 0.02 * (k - kStill), 0, 0);
+    StereoFrame f = MakeFrame(k);
+    const Eigen::Isometry3d T_c_w = TruePose(k).inverse();
+    Eigen::Isometry3d T_right_left = Eigen::Isometry3d::Identity();
+    T_right_left.translation() = Eigen::Vector3d(-kBaseline, 0, 0);
+    f.left_rgb = Render(T_c_w, 0, shift, &f.left_instance_id);
+    f.right_rgb = Render(T_right_left * T_c_w, 0, shift);
+    f.instances = {{1, Category::kBox, "panel"}};
+    const slam::TrackResult r = system.Track(f);
+    ASSERT_NE(r.status, slam::TrackStatus::kLost) << "frame " << k;
+    worst_m = std::max(worst_m, (r.T_w_c.translation() - TruePose(k).translation()).norm());
+    ASSERT_EQ(r.objects.size(), 1u);
+    const slam::ObjectReport& panel = r.objects[0];
+    if (k < kStill) {
+      EXPECT_FALSE(panel.dynamic) << "frame " << k;
+      EXPECT_EQ(panel.dropped, 0) << "frame " << k;
+    } else if (decided_at < 0 && panel.dynamic) {
+      decided_at = k;
+      std::printf("panel judged dynamic at frame %d (moving from %d): %d features, %d dropped, frame %d dropped\n", k,
+                  kStill, panel.features, panel.dropped, r.features_dropped);
+      EXPECT_GT(panel.features, 50);
+      EXPECT_EQ(panel.dropped, panel.features);  // the frame of the decision too
+      EXPECT_GE(r.features_dropped, panel.features);
+    } else if (decided_at >= 0) {
+      EXPECT_EQ(panel.dropped, panel.features) << "frame " << k;  // dropped before tracking from then on
+    }
+  }
+  system.Finish();
+  std::printf("worst position error %.2f mm\n", worst_m * 1e3);
+  ASSERT_GE(decided_at, kStill);
+  EXPECT_LE(decided_at, kStill + 8);  // 0.4 s
+  EXPECT_LT(worst_m, 0.003);
 }
 
 TEST(SlamSystem, RefusesFramesOutOfOrderOrIncomplete) {

@@ -147,6 +147,12 @@ std::map<uint16_t, double> DynamicObjects::LabelledPointNorms(const cv::Mat& ins
   return out;
 }
 
+void DynamicObjects::DropFromFrame(const std::vector<uint16_t>& ids) {
+  for (ObjectReport& r : reports_) {
+    if (std::find(ids.begin(), ids.end(), r.id) != ids.end()) r.dropped = r.features;
+  }
+}
+
 void DynamicObjects::RestartMeasurements() {
   for (auto& [id, o] : objects_) o.motion.RestartMeasurements();
 }

@@ -38,7 +38,9 @@ struct ObjectReport {
   std::string name;                // instance name
   Category category = Category::kBackground;
   int features = 0;                // features inside its mask (before removal)
-  int dropped = 0;                 // of those, removed before tracking
+  int dropped = 0;                 // of those, removed before tracking, or all of them when the object
+                                   // turned dynamic on this frame (DropFromFrame: its pose is optimised
+                                   // again without them)
   bool dynamic = false;            // judged dynamic after this frame
   double score = 0;                // adaptive: median displacement (m); paper: change of A (m)
   double threshold = 0;            // the score's threshold (m)
@@ -71,6 +73,9 @@ class DynamicObjects {
 
   // The reports of the current frame, in id order.
   const std::vector<ObjectReport>& reports() const { return reports_; }
+  // The frame's features on these objects were taken out of its pose after the judgement
+  // (Tracker::ReposeWithout): their reports count them all as dropped.
+  void DropFromFrame(const std::vector<uint16_t>& ids);
 
  private:
   struct ObjectState {

@@ -114,7 +114,8 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
   // Dynamic objects, before tracking: the features of objects judged dynamic go.
   auto td = Clock::now();
   const std::vector<bool> keep = m.dynamic->KeepMask(*features, frame.instances);
-  const int kept = static_cast<int>(std::count(keep.begin(), keep.end(), true));
+  int kept = static_cast<int>(std::count(keep.begin(), keep.end(), true));
+  std::vector<bool> dropped_after;  // per feature: kept for tracking, then taken out of the pose
   std::shared_ptr<const FrameFeatures> tracked = features;
   if (kept < static_cast<int>(keep.size())) tracked = features->Subset(keep, m.tracker.camera().width, m.tracker.camera().height);
   double dynamic_ms = ms_since(td);
@@ -138,6 +139,22 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
         m.dynamic->NeedsMapPoints() ? m.tracker.LocalMapPointPositions() : std::vector<Eigen::Vector3d>{};
     const std::vector<uint16_t> turned = m.dynamic->Update(frame.t_ns, *features, frame.left_instance_id, T_c_w, points);
     if (!turned.empty()) {
+      // The objects judged dynamic on this frame leave its pose too, not only the next frames':
+      // their features go as if they had been dropped before tracking.
+      std::vector<bool> excluded(static_cast<size_t>(*std::max_element(turned.begin(), turned.end())) + 1, false);
+      for (uint16_t id : turned) excluded[id] = true;
+      if (m.tracker.ReposeWithout(excluded, r.status == TrackStatus::kTracking)) {
+        r.T_w_c = m.tracker.LastPose().inverse();
+        m.dynamic->DropFromFrame(turned);
+        dropped_after.assign(features->size(), false);
+        for (size_t i = 0; i < features->size(); ++i) {
+          const uint16_t id = features->object[i];
+          if (keep[i] && id < excluded.size() && excluded[id]) {
+            dropped_after[i] = true;
+            --kept;
+          }
+        }
+      }
       std::lock_guard<std::mutex> lock(m.map.mutex);
       for (uint16_t id : turned) m.stats.object_points_erased += m.map.EraseObjectPoints(id);
     }
@@ -160,6 +177,7 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
       } else {
         const uint8_t f = j < fates.size() ? fates[j] : 0;
         mark.fate = f == 2 ? FeatureFate::kNew : f == 1 ? FeatureFate::kTracked : FeatureFate::kUnmatched;
+        if (!dropped_after.empty() && dropped_after[i]) mark.fate = FeatureFate::kDropped;
         ++j;
       }
       r.marks.push_back(mark);

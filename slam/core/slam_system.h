@@ -41,7 +41,8 @@ struct TrackResult {
   TrackStatus status = TrackStatus::kLost;
   bool keyframe = false;         // this frame became a keyframe
   int features = 0;              // features extracted in the left image
-  int features_dropped = 0;      // of those, removed on dynamic objects before tracking
+  int features_dropped = 0;      // of those, removed on dynamic objects before tracking, or from the
+                                 // frame's pose after it for objects judged dynamic on this frame
   int stereo_points = 0;         // features with depth
   int inliers = 0;               // map-point matches kept by pose optimisation
   double track_ms = 0;           // wall time of Track() (ms), the dynamic stage included

@@ -166,6 +166,39 @@ Eigen::Isometry3d Tracker::LastPoseWithout(const std::vector<bool>& excluded_ins
   return f.T_c_w;
 }
 
+bool Tracker::ReposeWithout(const std::vector<bool>& excluded_instance, bool tracked) {
+  std::lock_guard<std::mutex> lock(map_->mutex);
+  if (!tracked || lost_ || !last_.features) return false;
+  Frame f = last_;
+  int excluded = 0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    const uint16_t id = f.features->object[i];
+    if (!f.points[i] || id >= excluded_instance.size() || !excluded_instance[id]) continue;
+    f.points[i] = nullptr;
+    ++excluded;
+  }
+  if (excluded == 0) return false;
+  if (OptimizePose(cam_, pose_opt_, &f) < settings_.tracking.min_inliers) return false;
+  f.ForgetOutliers();
+  // Old camera to new camera, and a point's old world position to its new one.
+  const Eigen::Isometry3d new_from_old = f.T_c_w * last_.T_c_w.inverse();
+  const Eigen::Isometry3d move_point = f.T_c_w.inverse() * last_.T_c_w;
+  if (have_velocity_) velocity_ = new_from_old * velocity_;
+  last_good_T_c_w_ = f.T_c_w;
+  if (pending_keyframe_ && last_keyframe_frame_ == frame_index_) {
+    pending_keyframe_->T_c_w = f.T_c_w;
+    for (size_t i = 0; i < f.size(); ++i) {
+      MapPoint* p = pending_keyframe_->points[i];
+      if (!new_point_[i] || !p || p->bad) continue;
+      p->p_w = move_point * p->p_w;
+      p->UpdateFromObservations();
+    }
+  }
+  last_ = std::move(f);
+  RecordFates();
+  return true;
+}
+
 std::vector<Eigen::Vector3d> Tracker::LocalMapPointPositions() const {
   std::lock_guard<std::mutex> lock(map_->mutex);
   std::vector<Eigen::Vector3d> out;

@@ -47,6 +47,12 @@ class Tracker {
   // `min_share` (then nothing is optimised). `*excluded_share` (may be null): that share.
   Eigen::Isometry3d LastPoseWithout(const std::vector<bool>& excluded_instance, double min_share,
                                     double* excluded_share);
+  // The frame just tracked loses its matches on features whose instance `excluded_instance` says
+  // (objects judged dynamic after it was tracked) and its pose is optimised again without them;
+  // the motion model, and a keyframe made from the frame with the map points it created, move
+  // with it. Only after a frame tracked normally (not lost, relocalised or initialised: `tracked`)
+  // and when at least tracking.min_inliers remain; otherwise nothing changes. True when it moved.
+  bool ReposeWithout(const std::vector<bool>& excluded_instance, bool tracked);
   // The pose of the frame just tracked (map to camera).
   Eigen::Isometry3d LastPose() const { return last_.T_c_w; }
   // Per feature of the last Track()'s `features`: 0 unmatched (or an outlier), 1 tracked (an
