@@ -208,6 +208,44 @@ TEST(ObjectMotion, APauseShorterThanTheHoldIsBridgedAndARestartSoonAfterIsJudged
   }
 }
 
+// Frames until a walker who paused `pause_frames` (and was released) is dynamic again after it
+// walks on at 0.8 m/s changing its whole look every frame, so that no look can be judged (-1: not
+// within 10 frames).
+int RedetectedWhenNothingMatches(int pause_frames, uint64_t seed, const AdaptiveDynamicSettings& s) {
+  SyntheticObject obj(40, seed);
+  ObjectMotionTrack track;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  int k = 0;
+  for (; k < 40; ++k, offset.x() += 0.04) track.Add(obj.Observe(k * kFrameNs, offset, 0.5, 0.5), s);
+  bool released = false;
+  for (int j = 0; j < pause_frames; ++j, ++k) released = !track.Add(obj.Observe(k * kFrameNs, offset, 0.5, 0.5), s);
+  EXPECT_TRUE(released);
+  for (int j = 1; j <= 10; ++j, ++k) {
+    obj.ChangeLook(400);
+    offset.x() += 0.04;
+    if (track.Add(obj.Observe(k * kFrameNs, offset, 0.5, 0.5), s)) {
+      EXPECT_FALSE(track.last().judged);
+      return j;
+    }
+  }
+  return -1;
+}
+
+// walking_people_far's carol: released at the end of a 1 s pause, she walked on for 1.5 s with
+// her leg features matching 0-4 times between frames, never judged. Within hold_s of a release,
+// changed_look_frames looks in a row that cannot be judged make her dynamic again; later they
+// do not (an object long still whose look changes is not taken for a walker), nor with the rule off.
+TEST(ObjectMotion, AWalkerWhoWalksOnUnmatchableSoonAfterItsReleaseIsDynamicAgain) {
+  const AdaptiveDynamicSettings s;  // changed_look_frames 2, hold 1 s
+  for (uint64_t seed = 21; seed < 24; ++seed) {
+    EXPECT_EQ(RedetectedWhenNothingMatches(30, seed, s), 2) << seed;  // released at 20-21: walks on 0.5 s later
+    EXPECT_EQ(RedetectedWhenNothingMatches(70, seed, s), -1) << seed;  // walks on 2.5 s after the release
+    AdaptiveDynamicSettings off = s;
+    off.changed_look_frames = 0;
+    EXPECT_EQ(RedetectedWhenNothingMatches(30, seed, off), -1) << seed;
+  }
+}
+
 TEST(ObjectMotion, TooFewMatchesAreNotJudged) {
   SyntheticObject obj(5, 8);
   AdaptiveDynamicSettings s;

@@ -132,7 +132,8 @@ TEST(DynamicScenarios, StandingPeople) {
   // is not met, see the README.
   EXPECT_LE(adaptive.ate_m(), 2.0 * semantic.ate_m());
   EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.95);  // measured 1.000; target 0.90
-  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.35);        // measured 0.692; target 0.95, not met
+  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.35);        // measured 0.692, 0.731 since session 19 (the
+                                                             // frame of the decision drops it too); target 0.95
   EXPECT_EQ(adaptive.lost(), 0);
   ExpectDetection(adaptive, 0.95, 0.5, 0.5);  // measured 1.000, 0.769 (target 0.90, not met), 0.25 s
   EXPECT_EQ(semantic.dyn("kept_on_static_movables"), 0.0);  // semantic drops every person
@@ -160,8 +161,21 @@ TEST(DynamicScenarios, StandingCrowd) {
                                                               // 971.0 mm) since session 13 or earlier; target 0.8
   EXPECT_LE(adaptive.lost(), 40);                             // measured 20
   EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.95);   // measured 1.00; target 0.90
-  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.55);         // measured 0.79; target 0.95, not met
+  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.55);         // measured 0.79, 0.84 since session 19; target 0.95
   ExpectDetection(adaptive, 0.95, 0.7, 0.5);                  // measured 1.000, 0.859 (target 0.90), 0.20 s
+}
+
+// Two people zigzag 1.3-1.8 m ahead, pausing 1 s at each turn. Released at the end of a pause,
+// carol walked on for 1.5 s unjudged (her leg features, mostly background in their patches at
+// 2 m, do not match between frames): recall 0.854, dropped on moving 0.888 before session 19's
+// rule that looks which cannot be judged soon after a release count as motion.
+TEST(DynamicScenarios, WalkingPeopleFar) {
+  const DynamicRun adaptive = RunMethod("walking_people_far", "adaptive");
+  EXPECT_EQ(adaptive.lost(), 0);
+  EXPECT_LE(adaptive.pct(), 0.12);                           // measured 3.3 mm
+  EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.93);  // measured 0.970
+  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.91);        // measured 0.944 (0.888 before)
+  ExpectDetection(adaptive, 0.95, 0.91, 0.8);                // measured 0.998, 0.944 (0.854 before), 0.35 s
 }
 
 TEST(DynamicScenarios, StandingThenWalking) {

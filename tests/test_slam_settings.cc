@@ -164,7 +164,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 15 + 26;
+constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 16 + 26;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();

@@ -149,7 +149,14 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   // Onset needs confirm_frames judgements of motion in a row; once dynamic, or within hold_s of its
   // release (a walker who paused and walks on), every one counts.
   const bool recently_dynamic = released_ns_ >= 0 && t_ns - released_ns_ <= static_cast<int64_t>(s.hold_s * 1e9);
-  if (last_.moving && (dynamic_ || recently_dynamic || consecutive_moving_ >= s.confirm_frames)) {
+  // Within hold_s of a release, changed_look_frames looks in a row that cannot be judged although
+  // the object has enough features with depth count as motion: an object that just stood still
+  // matched itself well (that is how it was released), and a walker who walks on changes its look
+  // (legs swinging, their patches mostly background at a distance) so that nothing matches.
+  const bool unmatched = !last_.judged && snapshot.size() >= static_cast<size_t>(s.min_matches);
+  unjudged_after_release_ = recently_dynamic && !dynamic_ && unmatched ? unjudged_after_release_ + 1 : 0;
+  const bool changed_look = s.changed_look_frames > 0 && unjudged_after_release_ >= s.changed_look_frames;
+  if (changed_look || (last_.moving && (dynamic_ || recently_dynamic || consecutive_moving_ >= s.confirm_frames))) {
     last_motion_ns_ = t_ns;
     last_motion_ref_ns_ = ref_ns;
     moved_ = true;

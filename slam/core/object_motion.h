@@ -76,8 +76,9 @@ class ObjectMotionTrack {
  public:
   // Adds the frame's snapshot (may be empty: the object was seen without depth) and returns
   // whether the object is dynamic: it moved (by MeasureMotion against a snapshot within lag_s,
-  // confirm_frames times in a row to turn dynamic) within the last hold_s, or has not been judged
-  // still since it last moved.
+  // confirm_frames times in a row to turn dynamic; within hold_s of its release once, or
+  // changed_look_frames looks in a row that cannot be judged) within the last hold_s, or has not
+  // been judged still since it last moved.
   bool Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view = {});
   const MotionMeasurement& last() const { return last_; }
   // Forgets the snapshots (not the decision, its hold or the time of the last motion): after the
@@ -93,6 +94,7 @@ class ObjectMotionTrack {
   int64_t last_motion_ref_ns_ = 0;   // start of the last look that saw motion
   int64_t released_ns_ = -1;         // when it last turned from dynamic to static (-1: never)
   int consecutive_moving_ = 0;       // judgements of motion in a row
+  int unjudged_after_release_ = 0;   // looks in a row within hold_s of the release that could not be judged
   bool moved_ = false;
   bool static_since_motion_ = false;  // judged still (MotionMeasurement::still) since it last moved
   bool dynamic_ = false;

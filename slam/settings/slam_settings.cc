@@ -154,6 +154,7 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   a.Integer("max_hamming", &ad->max_hamming, kHamming);
   a.Number("static_pose_min_share", &ad->static_pose_min_share, NumberRange::Closed(0, 1));
   a.Number("stop_max_m", &ad->stop_max_m, NumberRange::NonNegative());
+  a.Integer("changed_look_frames", &ad->changed_look_frames, NumberRange::Closed(0, 1000));
   a.RejectUnknownKeys();
   m->RejectUnknownKeys();
 }
@@ -343,6 +344,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitInt(out, "max_hamming", a.max_hamming);
   EmitNumber(out, "static_pose_min_share", a.static_pose_min_share);
   EmitNumber(out, "stop_max_m", a.stop_max_m);
+  EmitInt(out, "changed_look_frames", a.changed_look_frames);
   out << YAML::EndMap;
   out << YAML::EndMap;
 

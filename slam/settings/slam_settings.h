@@ -95,6 +95,9 @@ struct AdaptiveDynamicSettings {
   double static_pose_min_share = 0.2;  // movable objects carry this share of inliers: judge with a pose from the rest (ratio)
   double stop_max_m = 0.01;          // a still look whose median displacement is below this dates the object's
                                      // last motion no later than the look's start: the hold runs from there (m)
+  int changed_look_frames = 2;       // within hold_s of a release, this many looks in a row that cannot be judged
+                                     // (with at least min_matches features with depth) make it dynamic again
+                                     // (frames; 0 = never)
 };
 
 // Dynamic objects (paper eqs. 1-4): how objects in the segmentation masks are judged.
