@@ -141,22 +141,29 @@ std::shared_ptr<FrameFeatures> Tracker::ExtractFeatures(const StereoFrame& frame
   return f;
 }
 
+int Tracker::DropInstanceMatches(const std::vector<bool>& excluded_instance, Frame* f, int* matched) const {
+  int excluded = 0;
+  *matched = 0;
+  for (size_t i = 0; i < f->size(); ++i) {
+    if (!f->points[i] || f->points[i]->bad) continue;
+    ++*matched;
+    const uint16_t id = f->features->object[i];
+    if (id < excluded_instance.size() && excluded_instance[id]) {
+      f->points[i] = nullptr;
+      ++excluded;
+    }
+  }
+  return excluded;
+}
+
 Eigen::Isometry3d Tracker::LastPoseWithout(const std::vector<bool>& excluded_instance, double min_share,
                                            double* excluded_share) {
   if (excluded_share) *excluded_share = 0;
   std::lock_guard<std::mutex> lock(map_->mutex);
   if (!last_.features) return last_.T_c_w;
   Frame f = last_;
-  int inliers = 0, excluded = 0;
-  for (size_t i = 0; i < f.size(); ++i) {
-    if (!f.points[i] || f.points[i]->bad) continue;
-    ++inliers;
-    const uint16_t id = f.features->object[i];
-    if (id < excluded_instance.size() && excluded_instance[id]) {
-      f.points[i] = nullptr;
-      ++excluded;
-    }
-  }
+  int inliers = 0;
+  const int excluded = DropInstanceMatches(excluded_instance, &f, &inliers);
   if (inliers == 0 || excluded == 0) return last_.T_c_w;
   const double share = static_cast<double>(excluded) / inliers;
   if (excluded_share) *excluded_share = share;
@@ -170,14 +177,9 @@ bool Tracker::ReposeWithout(const std::vector<bool>& excluded_instance, bool tra
   std::lock_guard<std::mutex> lock(map_->mutex);
   if (!tracked || lost_ || !last_.features) return false;
   Frame f = last_;
-  int excluded = 0;
-  for (size_t i = 0; i < f.size(); ++i) {
-    const uint16_t id = f.features->object[i];
-    if (!f.points[i] || id >= excluded_instance.size() || !excluded_instance[id]) continue;
-    f.points[i] = nullptr;
-    ++excluded;
-  }
-  if (excluded == 0) return false;
+  int matched = 0;
+  const int excluded = DropInstanceMatches(excluded_instance, &f, &matched);
+  if (excluded == 0 || matched - excluded < settings_.tracking.min_inliers) return false;
   if (OptimizePose(cam_, pose_opt_, &f) < settings_.tracking.min_inliers) return false;
   f.ForgetOutliers();
   // Old camera to new camera, and a point's old world position to its new one.

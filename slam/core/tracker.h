@@ -85,6 +85,9 @@ class Tracker {
 
  private:
   void RecordFates();  // fills last_fates_ from last_ at the end of Track()
+  // Removes from `f` its matches (to good map points) on features whose instance
+  // `excluded_instance` says; returns how many, and in `*matched` how many good matches it had.
+  int DropInstanceMatches(const std::vector<bool>& excluded_instance, Frame* f, int* matched) const;
   bool Initialise();
   void AddTemporaryPointsToLastFrame();
   bool TrackWithMotionModel(const Eigen::Isometry3d& predicted);  // predicted: T_c_w from velocity_
