@@ -105,6 +105,36 @@ TEST(ObjectMotion, SlowBoxWithinHalfASecond) {
   EXPECT_LE(frames, 10);  // 0.5 s at 20 Hz
 }
 
+// standing_people's walkers, setting off: a second-old look of their legs no longer matches (the
+// legs stood elsewhere) and between two frames they move 2-4 cm, too little beyond the noise, so
+// the track waited for the previous frame to show it (0.25-0.45 s). Between the two, a look a
+// quarter of a second old matches and shows 10-20 cm. Here an object changes a quarter of its look
+// every frame (0.74 of its features survive a frame: 9 of 40 over 5 frames, 2 over 10, too few to
+// judge at min_matches 6) and sets off at 0.3 m/s (1.5 cm a frame): only a look 2-8 frames old
+// both matches and shows the motion.
+TEST(ObjectMotion, AWalkerWhoseLookChangesIsJudgedAgainstAQuarterSecondOldLook) {
+  const AdaptiveDynamicSettings s;  // lag 1 s, threshold 2 cm, min_matches 6
+  for (uint64_t seed = 41; seed < 46; ++seed) {
+    SyntheticObject obj(40, seed);
+    ObjectMotionTrack track;
+    int detected = -1;
+    for (int k = 0; k < 60 && detected < 0; ++k) {
+      obj.ChangeLook(12);
+      const double moving_s = std::max(0, k - 30) * kFrameNs * 1e-9;
+      const bool dynamic = track.Add(obj.Observe(k * kFrameNs, Eigen::Vector3d(0.3 * moving_s, 0, 0), 0.5, 0.5), s);
+      if (k < 30) {
+        EXPECT_FALSE(dynamic) << seed << " frame " << k;  // changing its look while it stands is no motion
+      } else if (dynamic) {
+        detected = k - 30;
+      }
+    }
+    EXPECT_GE(detected, 2) << seed;  // two judgements of motion in a row, 1.5 cm a frame
+    EXPECT_LE(detected, 8) << seed;  // 0.4 s
+    EXPECT_GT(track.last().lag_s, 0.075) << seed;  // judged against an older look than the previous frame's
+    EXPECT_LT(track.last().lag_s, 0.45) << seed;
+  }
+}
+
 TEST(ObjectMotion, ApproachingAndTangentialMotionBothCount) {
   // Towards the camera (mask depth shrinks, the norm of world positions hardly changes for an
   // object circling the origin): both are world displacements.

@@ -94,7 +94,8 @@ TEST(DynamicScenarios, WalkingPeople) {
   EXPECT_LE(adaptive.ate_m(), 0.15 * none.ate_m());
   EXPECT_LE(adaptive.pct(), 0.12);                    // measured 0.06% of path; target 0.2%
   EXPECT_EQ(adaptive.lost(), 0);
-  // Measured precision 0.999, recall 0.936, median latency 0.40 s (targets 0.95, 0.90, 0.5 s);
+  // Measured precision 0.999, recall 0.936, median latency 0.40 s (targets 0.95, 0.90, 0.5 s),
+  // recall 0.961 since session 20;
   // recall 0.951 before session 16 dated a stop by the first look that sees it (the 1 s pauses
   // of these walkers now end as their hold does).
   ExpectDetection(adaptive, 0.95, 0.90, 0.8);
@@ -132,10 +133,13 @@ TEST(DynamicScenarios, StandingPeople) {
   // is not met, see the README.
   EXPECT_LE(adaptive.ate_m(), 2.0 * semantic.ate_m());
   EXPECT_GE(adaptive.dyn("kept_on_static_movables"), 0.95);  // measured 1.000; target 0.90
-  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.35);        // measured 0.692, 0.731 since session 19 (the
-                                                             // frame of the decision drops it too); target 0.95
+  // Measured 0.692, 0.731 since session 19 (the frame of the decision drops it too), 0.795 since
+  // session 20 (looks a quarter second old); target 0.95. Bound: 1.7x the share not dropped.
+  EXPECT_GE(adaptive.dyn("dropped_on_moving"), 0.65);
   EXPECT_EQ(adaptive.lost(), 0);
-  ExpectDetection(adaptive, 0.95, 0.5, 0.5);  // measured 1.000, 0.769 (target 0.90, not met), 0.25 s
+  // Measured 1.000, 0.769, 0.25 s; recall 0.818 since session 20 (target 0.90, not met: a decision
+  // on every walker's second moving frame would give 0.919). Bound: 1.5x the share missed.
+  ExpectDetection(adaptive, 0.95, 0.72, 0.5);
   EXPECT_EQ(semantic.dyn("kept_on_static_movables"), 0.0);  // semantic drops every person
 }
 

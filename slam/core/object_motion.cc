@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "slam/core/map.h"
@@ -105,6 +106,7 @@ MotionMeasurement MeasureMotion(const ObjectSnapshot& ref, const ObjectSnapshot&
   }
   if (m.lag_s > 0 && median.norm() - s.k_sigma * m.std_error.norm() > s.max_speed_mps * m.lag_s) {
     m.judged = false;  // faster than any object followed here: mismatches
+    m.too_fast = true;
     return m;
   }
   m.displacement_w = median(0) * axes[0] + median(1) * axes[1] + median(2) * axes[2];
@@ -128,20 +130,48 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   const int64_t lag_ns = static_cast<int64_t>(s.lag_s * 1e9);
   while (!history_.empty() && history_.front().t_ns < t_ns - lag_ns) history_.pop_front();
   // Against the oldest snapshot within the lag (the longest baseline in time, for slow objects);
-  // when it gives too few matches (a walking person's legs change their look), the middle one,
-  // then the previous frame. Three at most bounds the cost per frame.
+  // when it gives too few matches (a walking person's legs change their look), the one nearest
+  // half that lag ago, a quarter, and so on down to the previous frame: a walker who has just
+  // set off has moved 10-20 cm a quarter of a second ago, and still looks enough like that to
+  // match, where a second ago its legs stood elsewhere and the previous frame shows only 2-4 cm.
+  // Halving bounds the cost per frame by log2 of the frames in lag_s.
   last_ = MotionMeasurement();
-  std::vector<const ObjectSnapshot*> refs;
-  for (const ObjectSnapshot& ref : history_) {
+  std::vector<ObjectSnapshot*> refs;
+  for (ObjectSnapshot& ref : history_) {
     if (ref.size() > 0) refs.push_back(&ref);
   }
-  if (!refs.empty()) {
-    const size_t picks[] = {0, refs.size() / 2, refs.size() - 1};
-    for (size_t k = 0; k < 3; ++k) {
-      if (k > 0 && picks[k] == picks[k - 1]) continue;
-      last_ = MeasureMotion(*refs[picks[k]], snapshot, s, in_view);
-      if (last_.judged) break;
+  // Over a long lag a transient jump (a frame whose mask held the background behind the object, a
+  // stereo mismatch of its depth) is slow enough to pass for motion; against the next frame it is
+  // faster than any object. A look that sees motion is therefore checked: a reference that jumps
+  // from the snapshot after it is skipped, and a current snapshot that jumps from the previous
+  // frame is a mismatch, not motion. Only looks that see motion, of an object not yet dynamic,
+  // are checked (each check is one more matching: a moving crate of 256 features tripled the
+  // stage's cost): once dynamic, a mismatch can only lengthen the hold.
+  const auto jumps_to_next = [&](size_t i) {
+    if (refs[i]->jumps_to_next < 0) refs[i]->jumps_to_next = MeasureMotion(*refs[i], *refs[i + 1], s, in_view).too_fast;
+    return refs[i]->jumps_to_next == 1;
+  };
+  size_t tried = refs.size();
+  for (double back_s = s.lag_s; !refs.empty(); back_s *= 0.5) {
+    // The snapshot nearest back_s before this one; the previous frame ends the chain.
+    const int64_t want_ns = t_ns - static_cast<int64_t>(back_s * 1e9);
+    size_t i = refs.size() - 1;
+    for (size_t k = 0; k < refs.size(); ++k) {
+      if (std::llabs(refs[k]->t_ns - want_ns) < std::llabs(refs[i]->t_ns - want_ns)) i = k;
     }
+    if (i != tried) {
+      tried = i;
+      MotionMeasurement m = MeasureMotion(*refs[i], snapshot, s, in_view);
+      if (!(m.moving && !dynamic_ && i + 1 < refs.size() && jumps_to_next(i))) {
+        last_ = m;
+        if (last_.judged) break;
+      }
+    }
+    if (i + 1 == refs.size()) break;
+  }
+  if (last_.moving && !dynamic_ && tried + 1 < refs.size()) {
+    const MotionMeasurement step = MeasureMotion(*refs.back(), snapshot, s, in_view);
+    if (step.too_fast) last_ = step;
   }
   consecutive_moving_ = last_.moving ? consecutive_moving_ + 1 : 0;
   // A judgement spans [t - lag, t]: the motion it sees happened somewhere in that span.

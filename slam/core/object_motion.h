@@ -34,6 +34,9 @@ struct ObjectSnapshot {
   std::vector<double> sigma_lateral_m;  // standard deviation across the ray, from the keypoint position
                                         // (m; empty: as sigma_m, an isotropic error)
   cv::Mat descriptors;               // CV_8U, one 32-byte row per point
+  int jumps_to_next = -1;            // set by ObjectMotionTrack: 1 when the snapshot after it differs from it
+                                     // faster than max_speed_mps (a transient mismatch), 0 when not, -1 not
+                                     // yet measured
   size_t size() const { return p_w.size(); }
 };
 
@@ -48,6 +51,8 @@ struct MotionMeasurement {
   double threshold_m = 0;            // the displacement_m beyond which it is moving: threshold_m plus what
                                      // k_sigma standard errors take off each component (m)
   bool judged = false;               // enough matches to judge
+  bool too_fast = false;             // not judged: the median displacement is faster than max_speed_mps
+                                     // beyond its errors (mismatches)
   bool moving = false;               // judged and displacement_m > threshold
   bool still = false;                // judged, |displacement + k_sigma std errors| < still_max_m, over at
                                      // least half of lag_s: the measurement rules out motion (far, noisy
