@@ -128,7 +128,7 @@ void ObjectMotionTrack::RestartMeasurements() {
 bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view) {
   const int64_t t_ns = snapshot.t_ns;
   const int64_t lag_ns = static_cast<int64_t>(s.lag_s * 1e9);
-  while (!history_.empty() && history_.front().t_ns < t_ns - lag_ns) history_.pop_front();
+  while (!history_.empty() && history_.front().snapshot.t_ns < t_ns - lag_ns) history_.pop_front();
   // Against the oldest snapshot within the lag (the longest baseline in time, for slow objects);
   // when it gives too few matches (a walking person's legs change their look), the one nearest
   // half that lag ago, a quarter, and so on down to the previous frame: a walker who has just
@@ -136,9 +136,9 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   // match, where a second ago its legs stood elsewhere and the previous frame shows only 2-4 cm.
   // Halving bounds the cost per frame by log2 of the frames in lag_s.
   last_ = MotionMeasurement();
-  std::vector<ObjectSnapshot*> refs;
-  for (ObjectSnapshot& ref : history_) {
-    if (ref.size() > 0) refs.push_back(&ref);
+  std::vector<Past*> refs;
+  for (Past& ref : history_) {
+    if (ref.snapshot.size() > 0) refs.push_back(&ref);
   }
   // Over a long lag a transient jump (a frame whose mask held the background behind the object, a
   // stereo mismatch of its depth) is slow enough to pass for motion; against the next frame it is
@@ -148,7 +148,9 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   // are checked (each check is one more matching: a moving crate of 256 features tripled the
   // stage's cost): once dynamic, a mismatch can only lengthen the hold.
   const auto jumps_to_next = [&](size_t i) {
-    if (refs[i]->jumps_to_next < 0) refs[i]->jumps_to_next = MeasureMotion(*refs[i], *refs[i + 1], s, in_view).too_fast;
+    if (refs[i]->jumps_to_next < 0) {
+      refs[i]->jumps_to_next = MeasureMotion(refs[i]->snapshot, refs[i + 1]->snapshot, s, in_view).too_fast;
+    }
     return refs[i]->jumps_to_next == 1;
   };
   size_t tried = refs.size();
@@ -157,11 +159,11 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
     const int64_t want_ns = t_ns - static_cast<int64_t>(back_s * 1e9);
     size_t i = refs.size() - 1;
     for (size_t k = 0; k < refs.size(); ++k) {
-      if (std::llabs(refs[k]->t_ns - want_ns) < std::llabs(refs[i]->t_ns - want_ns)) i = k;
+      if (std::llabs(refs[k]->snapshot.t_ns - want_ns) < std::llabs(refs[i]->snapshot.t_ns - want_ns)) i = k;
     }
     if (i != tried) {
       tried = i;
-      MotionMeasurement m = MeasureMotion(*refs[i], snapshot, s, in_view);
+      MotionMeasurement m = MeasureMotion(refs[i]->snapshot, snapshot, s, in_view);
       if (!(m.moving && !dynamic_ && i + 1 < refs.size() && jumps_to_next(i))) {
         last_ = m;
         if (last_.judged) break;
@@ -170,7 +172,7 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
     if (i + 1 == refs.size()) break;
   }
   if (last_.moving && !dynamic_ && tried + 1 < refs.size()) {
-    const MotionMeasurement step = MeasureMotion(*refs.back(), snapshot, s, in_view);
+    const MotionMeasurement step = MeasureMotion(refs.back()->snapshot, snapshot, s, in_view);
     if (step.too_fast) last_ = step;
   }
   consecutive_moving_ = last_.moving ? consecutive_moving_ + 1 : 0;
@@ -208,7 +210,7 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   const bool was_dynamic = dynamic_;
   dynamic_ = moved_ && (t_ns - last_motion_ns_ <= static_cast<int64_t>(s.hold_s * 1e9) || !static_since_motion_);
   if (was_dynamic && !dynamic_) released_ns_ = t_ns;
-  history_.push_back(std::move(snapshot));
+  history_.push_back(Past{std::move(snapshot)});
   return dynamic_;
 }
 

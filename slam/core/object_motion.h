@@ -34,9 +34,6 @@ struct ObjectSnapshot {
   std::vector<double> sigma_lateral_m;  // standard deviation across the ray, from the keypoint position
                                         // (m; empty: as sigma_m, an isotropic error)
   cv::Mat descriptors;               // CV_8U, one 32-byte row per point
-  int jumps_to_next = -1;            // set by ObjectMotionTrack: 1 when the snapshot after it differs from it
-                                     // faster than max_speed_mps (a transient mismatch), 0 when not, -1 not
-                                     // yet measured
   size_t size() const { return p_w.size(); }
 };
 
@@ -92,7 +89,12 @@ class ObjectMotionTrack {
   void RestartMeasurements();
 
  private:
-  std::deque<ObjectSnapshot> history_;  // oldest first, all within lag_s of the newest
+  struct Past {
+    ObjectSnapshot snapshot;
+    int jumps_to_next = -1;  // 1 when the next snapshot differs from it faster than max_speed_mps (a
+                             // transient mismatch), 0 when not, -1 not yet measured
+  };
+  std::deque<Past> history_;  // oldest first, all within lag_s of the newest
   MotionMeasurement last_;
   int64_t last_motion_ns_ = 0;      // end of the last look that saw motion, or the start of a later
                                      // still look that overlaps it: the latest the motion can have been
