@@ -95,8 +95,49 @@ TEST(ObjectMotion, StaticObjectIsNeverDynamic) {
 
 TEST(ObjectMotion, WalkingPersonWithinAFewFrames) {
   const int frames = FramesToDetect({0.8, 0, 0}, 20, 100, 3);  // 0.8 m/s across the view
-  EXPECT_GE(frames, 2);  // two judgements of motion in a row (confirm_frames)
-  EXPECT_LE(frames, 4);
+  EXPECT_GE(frames, 1);  // one judgement of motion drops it (drop_frames), tentatively
+  EXPECT_LE(frames, 3);
+}
+
+// The first judgement of motion drops the object's features at once; the second in a row
+// (confirm_frames) confirms it, and only then is it held. A single mismatched look of an object
+// that stands makes it dynamic for that frame alone, and with drop_frames = confirm_frames never.
+TEST(ObjectMotion, ATentativeDecisionDropsAtTheFirstMotionAndWaitsForTheConfirmation) {
+  const AdaptiveDynamicSettings s;  // drop_frames 1, confirm_frames 2, hold 1 s
+  AdaptiveDynamicSettings at_confirmation = s;
+  at_confirmation.drop_frames = s.confirm_frames;
+  for (uint64_t seed = 51; seed < 54; ++seed) {
+    // A walker at 0.8 m/s (4 cm a frame) from frame 20.
+    SyntheticObject walker(40, seed);
+    ObjectMotionTrack track, old_track;
+    int dropped = -1, confirmed = -1, dropped_at_confirmation = -1;
+    for (int k = 0; k < 40; ++k) {
+      const Eigen::Vector3d offset(0.8 * std::max(0, k - 20) * kFrameNs * 1e-9, 0, 0);
+      const ObjectSnapshot snapshot = walker.Observe(k * kFrameNs, offset, 0.5, 0.5);
+      const bool dynamic = track.Add(snapshot, s);
+      if (dynamic && dropped < 0) dropped = k - 20;
+      if (track.confirmed() && confirmed < 0) confirmed = k - 20;
+      EXPECT_TRUE(!track.confirmed() || dynamic) << seed << " frame " << k;
+      if (old_track.Add(snapshot, at_confirmation) && dropped_at_confirmation < 0) dropped_at_confirmation = k - 20;
+    }
+    EXPECT_GE(dropped, 1) << seed;  // the frame after the onset: 4 cm
+    EXPECT_EQ(confirmed, dropped + 1) << seed;
+    EXPECT_EQ(dropped_at_confirmation, confirmed) << seed;
+
+    // A standing object whose frame 30 is displaced by 6 cm (a mismatched look, 1.2 m/s from its
+    // neighbours: not too fast to be motion): tentatively dynamic on that frame, and on frame 50
+    // when that look is the second-old reference; never confirmed, never held; never dropped
+    // when drop_frames equals confirm_frames.
+    SyntheticObject stander(40, seed + 10);
+    ObjectMotionTrack standing, standing_old;
+    for (int k = 0; k < 60; ++k) {
+      const Eigen::Vector3d offset(k == 30 ? 0.06 : 0.0, 0, 0);
+      const ObjectSnapshot snapshot = stander.Observe(k * kFrameNs, offset, 0.5, 0.5);
+      EXPECT_EQ(standing.Add(snapshot, s), k == 30 || k == 50) << seed << " frame " << k;
+      EXPECT_FALSE(standing.confirmed()) << seed << " frame " << k;
+      EXPECT_FALSE(standing_old.Add(snapshot, at_confirmation)) << seed << " frame " << k;
+    }
+  }
 }
 
 TEST(ObjectMotion, SlowBoxWithinHalfASecond) {
@@ -227,7 +268,8 @@ TEST(ObjectMotion, ReleasedOneHoldAfterItStops) {
 // soon after being released is dynamic again at the first judgement of motion, not after
 // confirm_frames of them.
 TEST(ObjectMotion, APauseShorterThanTheHoldIsBridgedAndARestartSoonAfterIsJudgedAtOnce) {
-  const AdaptiveDynamicSettings s;
+  AdaptiveDynamicSettings s;
+  s.drop_frames = s.confirm_frames;  // no tentative decision: a fresh start waits for the confirmation
   for (uint64_t seed = 11; seed < 14; ++seed) {
     EXPECT_EQ(ReleaseAfterStop(0.8, 40, 16, 10, seed, s), -1) << seed;  // 0.8 s pause
     int restart = -1, fresh = -1;
@@ -504,6 +546,38 @@ TEST(DynamicObjects, TurnedDynamicIsReportedOnceAndSurvivesAMissedDetection) {
     }
   }
   EXPECT_EQ(turned_count, 1);
+}
+
+// The walker turns dynamic (its features are dropped, Update reports it) at the first judgement
+// of motion and is confirmed (JustConfirmed: the caller culls its map points) one frame later,
+// once each; with drop_frames = confirm_frames both come on the same frame.
+TEST(DynamicObjects, ATentativeTurnCullsNothingUntilConfirmed) {
+  for (int drop_frames : {1, 2}) {
+    StageFixture fx;
+    SlamSettings settings;
+    settings.dynamic.adaptive.drop_frames = drop_frames;
+    DynamicObjects stage(settings, fx.cam);
+    int turned_at = -1, confirmed_at = -1, turned_count = 0, confirmed_count = 0;
+    for (int k = 0; k < 40; ++k) {
+      const Eigen::Vector3d person(k < 10 ? 0.0 : 0.8 * (k - 10) * kFrameNs * 1e-9, 0, 0);
+      const FrameFeatures f = fx.Features(k * kFrameNs, person, Eigen::Vector3d::Zero());
+      stage.KeepMask(f, StageFixture::Instances());
+      for (uint16_t id : stage.Update(k * kFrameNs, f, cv::Mat(), Eigen::Isometry3d::Identity(), {})) {
+        EXPECT_EQ(id, 3);
+        turned_at = k;
+        ++turned_count;
+      }
+      for (uint16_t id : stage.JustConfirmed()) {
+        EXPECT_EQ(id, 3);
+        confirmed_at = k;
+        ++confirmed_count;
+      }
+    }
+    EXPECT_EQ(turned_count, 1) << drop_frames;
+    EXPECT_EQ(confirmed_count, 1) << drop_frames;
+    EXPECT_GE(turned_at, 11) << drop_frames;
+    EXPECT_EQ(confirmed_at, turned_at + 2 - drop_frames) << drop_frames;
+  }
 }
 
 TEST(DynamicObjects, SemanticDropsEveryMovableNoneDropsNothing) {

@@ -138,6 +138,8 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(da.adaptive.max_speed_mps, db.adaptive.max_speed_mps);
   EXPECT_EQ(da.adaptive.still_max_m, db.adaptive.still_max_m);
   EXPECT_EQ(da.adaptive.confirm_frames, db.adaptive.confirm_frames);
+  EXPECT_EQ(da.adaptive.drop_frames, db.adaptive.drop_frames);
+  EXPECT_EQ(da.adaptive.static_pose_outliers, db.adaptive.static_pose_outliers);
   EXPECT_EQ(da.adaptive.min_matches, db.adaptive.min_matches);
   EXPECT_EQ(da.adaptive.foreground_band_m, db.adaptive.foreground_band_m);
   EXPECT_EQ(da.adaptive.interior_px, db.adaptive.interior_px);
@@ -164,7 +166,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 16 + 26;
+constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 18 + 26;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -227,7 +229,7 @@ TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
   s.dynamic.window_n = 12;
   s.dynamic.forget_s = 3;
   s.dynamic.prior = {0.9, 0.1, 0.4};
-  s.dynamic.adaptive = {0.8, 0.03, 2.5, 0.7, 0.4, 2.5, 0.15, 0.7, 3, 8, 4, 0.25, 40, 0.3};
+  s.dynamic.adaptive = {0.8, 0.03, 2.5, 0.7, 0.4, 2.5, 0.15, 0.7, 3, 2, 8, 4, 0.25, 40, 0.3, 0};
   s.source_file = "/some/where.yaml";
 
   const std::string yaml = SlamSettingsToYaml(s);

@@ -161,6 +161,7 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
                                              const Eigen::Isometry3d& T_c_w,
                                              const std::vector<Eigen::Vector3d>& map_points_w) {
   std::vector<uint16_t> turned;
+  just_confirmed_.clear();
   const int64_t forget_ns = static_cast<int64_t>(settings_.forget_s * 1e9);
   for (auto it = objects_.begin(); it != objects_.end();) {
     it = t_ns - it->second.last_seen_ns > forget_ns ? objects_.erase(it) : std::next(it);
@@ -184,7 +185,7 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
   for (ObjectReport& r : reports_) {
     ObjectState& o = objects_[r.id];
     o.last_seen_ns = t_ns;
-    const bool was = o.dynamic;
+    const bool was = o.dynamic, was_confirmed = o.confirmed;
     switch (method_) {
       case DynamicMethod::kSemantic:
         o.dynamic = true;
@@ -203,6 +204,7 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
       }
       case DynamicMethod::kAdaptive:
         o.dynamic = o.motion.Add(Snapshot(t_ns, f, r.id, instance_id, T_w_c), settings_.adaptive, in_view);
+        o.confirmed = o.motion.confirmed();
         r.score = o.motion.last().displacement_m;
         r.threshold = o.motion.last().threshold_m;
         break;
@@ -210,7 +212,9 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
         break;
     }
     r.dynamic = o.dynamic;
+    if (method_ != DynamicMethod::kAdaptive) o.confirmed = o.dynamic;
     if (o.dynamic && !was) turned.push_back(r.id);
+    if (o.confirmed && !was_confirmed) just_confirmed_.push_back(r.id);
   }
   return turned;
 }

@@ -63,13 +63,18 @@ class DynamicObjects {
   // Judges the frame's objects with `T_c_w` (map to camera) and the features `f` (all of them,
   // labelled). `instance_id` (CV_16U; may be empty) marks the masks' edges; `map_points_w` serve
   // the paper's method only. Returns
-  // the ids that have turned dynamic with this frame.
+  // the ids that have turned dynamic with this frame (tentatively or confirmed; see
+  // ObjectMotionTrack::Add).
   std::vector<uint16_t> Update(int64_t t_ns, const FrameFeatures& f, const cv::Mat& instance_id,
                                const Eigen::Isometry3d& T_c_w, const std::vector<Eigen::Vector3d>& map_points_w);
 
   // The world frame has jumped (a relocalisation, a new map segment): the objects' motion
   // measurements start again; their decisions stand.
   void RestartMeasurements();
+
+  // The ids whose dynamic decision was confirmed with the last Update (their map points go; a
+  // tentative decision keeps them). Semantic and paper decisions are confirmed when made.
+  const std::vector<uint16_t>& JustConfirmed() const { return just_confirmed_; }
 
   // The reports of the current frame, in id order.
   const std::vector<ObjectReport>& reports() const { return reports_; }
@@ -80,7 +85,8 @@ class DynamicObjects {
  private:
   struct ObjectState {
     int64_t last_seen_ns = 0;
-    bool dynamic = false;
+    bool dynamic = false;          // features dropped: confirmed or tentatively dynamic
+    bool confirmed = false;        // dynamic by a confirmed decision
     ObjectMotionTrack motion;      // adaptive
     PaperAttributeSeries paper;    // paper
   };
@@ -97,6 +103,7 @@ class DynamicObjects {
   StereoCamera cam_;
   std::map<uint16_t, ObjectState> objects_;
   std::vector<ObjectReport> reports_;
+  std::vector<uint16_t> just_confirmed_;
 };
 
 }  // namespace viqu::slam

@@ -211,7 +211,8 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   dynamic_ = moved_ && (t_ns - last_motion_ns_ <= static_cast<int64_t>(s.hold_s * 1e9) || !static_since_motion_);
   if (was_dynamic && !dynamic_) released_ns_ = t_ns;
   history_.push_back(Past{std::move(snapshot)});
-  return dynamic_;
+  const bool tentative = last_.moving && consecutive_moving_ >= s.drop_frames;
+  return dynamic_ || tentative;
 }
 
 }  // namespace viqu::slam

@@ -80,8 +80,14 @@ class ObjectMotionTrack {
   // whether the object is dynamic: it moved (by MeasureMotion against a snapshot within lag_s,
   // confirm_frames times in a row to turn dynamic; within hold_s of its release once, or
   // changed_look_frames looks in a row that cannot be judged) within the last hold_s, or has not
-  // been judged still since it last moved.
+  // been judged still since it last moved. Also true while it is tentatively dynamic: its last
+  // drop_frames judgements (fewer than confirm_frames) saw motion. Dropping a standing object's
+  // features for a frame costs little; keeping a walker's costs the pose, so the features go at
+  // the first sign of motion, while the hold and the culling of its map points wait for the
+  // confirmation.
   bool Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view = {});
+  // Dynamic by a confirmed judgement (not merely tentatively).
+  bool confirmed() const { return dynamic_; }
   const MotionMeasurement& last() const { return last_; }
   // Forgets the snapshots (not the decision, its hold or the time of the last motion): after the
   // world frame has changed under them (a new map segment, a relocalisation), world positions

@@ -133,7 +133,8 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
     if (m.dynamic->NeedsPose()) {
       std::vector<bool> movable(static_cast<size_t>(m.dynamic->reports().back().id) + 1, false);
       for (const ObjectReport& o : m.dynamic->reports()) movable[o.id] = true;
-      T_c_w = m.tracker.LastPoseWithout(movable, m.settings.dynamic.adaptive.static_pose_min_share, &r.excluded_share);
+      T_c_w = m.tracker.LastPoseWithout(movable, m.settings.dynamic.adaptive.static_pose_min_share,
+                                        m.settings.dynamic.adaptive.static_pose_outliers == 1, &r.excluded_share);
     }
     const std::vector<Eigen::Vector3d> points =
         m.dynamic->NeedsMapPoints() ? m.tracker.LocalMapPointPositions() : std::vector<Eigen::Vector3d>{};
@@ -155,8 +156,12 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
           }
         }
       }
+    }
+    // Only a confirmed decision culls the object's map points: a tentative one may be a single
+    // mismatched look of an object that stands.
+    if (!m.dynamic->JustConfirmed().empty()) {
       std::lock_guard<std::mutex> lock(m.map.mutex);
-      for (uint16_t id : turned) m.stats.object_points_erased += m.map.EraseObjectPoints(id);
+      for (uint16_t id : m.dynamic->JustConfirmed()) m.stats.object_points_erased += m.map.EraseObjectPoints(id);
     }
   }
   dynamic_ms += ms_since(td);

@@ -42,10 +42,13 @@ class Tracker {
   std::shared_ptr<FrameFeatures> ExtractFeatures(const StereoFrame& frame) const;
 
   // The pose of the frame just tracked (map to camera) optimised again without the matches on
-  // features whose instance `excluded` says; the tracked pose when fewer than
+  // features whose instance `excluded` says, and (`with_outliers`) with the other matches the
+  // tracked pose had rejected as outliers (a large moving object drags the tracked pose along and
+  // makes much of the static scene look wrong to it); the tracked pose when fewer than
   // tracking.min_inliers remain or when the excluded share of the frame's inliers is below
   // `min_share` (then nothing is optimised). `*excluded_share` (may be null): that share.
   Eigen::Isometry3d LastPoseWithout(const std::vector<bool>& excluded_instance, double min_share,
+                                    bool with_outliers,
                                     double* excluded_share);
   // The frame just tracked loses its matches on features whose instance `excluded_instance` says
   // (objects judged dynamic after it was tracked) and its pose is optimised again without them;
@@ -88,6 +91,10 @@ class Tracker {
   // Removes from `f` its matches (to good map points) on features whose instance
   // `excluded_instance` says; returns how many, and in `*matched` how many good matches it had.
   int DropInstanceMatches(const std::vector<bool>& excluded_instance, Frame* f, int* matched) const;
+  // Gives `f` (the last frame) back the matches its tracked pose judged outliers, except on the
+  // excluded instances (see LastPoseWithout); returns how many.
+  int RestoreOutliersOutside(const std::vector<bool>& excluded_instance, Frame* f) const;
+  void RememberOutliers(const Frame& f);
   bool Initialise();
   void AddTemporaryPointsToLastFrame();
   bool TrackWithMotionModel(const Eigen::Isometry3d& predicted);  // predicted: T_c_w from velocity_
@@ -121,6 +128,8 @@ class Tracker {
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  // T_cur_last of the last step
   Eigen::Isometry3d last_good_T_c_w_ = Eigen::Isometry3d::Identity();  // last pose tracked by vision
   bool have_velocity_ = false;
+  std::vector<MapPoint*> last_outliers_;  // per feature of the last frame: the map point it matched when the
+                                          // tracked pose judged that match an outlier (else null)
   bool external_prior_ = false;  // velocity_ was set by SetMotionPrior for this Track()
   double prior_sigma_m_ = 0;     // its translation's standard deviation (m)
   // The first search window for this frame (px, level 0), and what sizes it with an external

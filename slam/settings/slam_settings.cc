@@ -148,11 +148,13 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   a.Number("still_max_m", &ad->still_max_m, NumberRange::Positive());
   a.Number("hold_s", &ad->hold_s, NumberRange::Closed(0, 600));
   a.Integer("confirm_frames", &ad->confirm_frames, NumberRange::Closed(1, 1000));
+  a.Integer("drop_frames", &ad->drop_frames, NumberRange::Closed(1, 1000));
   a.Integer("min_matches", &ad->min_matches, kCount1);
   a.Integer("interior_px", &ad->interior_px, NumberRange::Closed(0, 100));
   a.Number("foreground_band_m", &ad->foreground_band_m, NumberRange::Positive());
   a.Integer("max_hamming", &ad->max_hamming, kHamming);
   a.Number("static_pose_min_share", &ad->static_pose_min_share, NumberRange::Closed(0, 1));
+  a.Integer("static_pose_outliers", &ad->static_pose_outliers, NumberRange::Closed(0, 1));
   a.Number("stop_max_m", &ad->stop_max_m, NumberRange::NonNegative());
   a.Integer("changed_look_frames", &ad->changed_look_frames, NumberRange::Closed(0, 1000));
   a.RejectUnknownKeys();
@@ -338,11 +340,13 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "still_max_m", a.still_max_m);
   EmitNumber(out, "hold_s", a.hold_s);
   EmitInt(out, "confirm_frames", a.confirm_frames);
+  EmitInt(out, "drop_frames", a.drop_frames);
   EmitInt(out, "min_matches", a.min_matches);
   EmitInt(out, "interior_px", a.interior_px);
   EmitNumber(out, "foreground_band_m", a.foreground_band_m);
   EmitInt(out, "max_hamming", a.max_hamming);
   EmitNumber(out, "static_pose_min_share", a.static_pose_min_share);
+  EmitInt(out, "static_pose_outliers", a.static_pose_outliers);
   EmitNumber(out, "stop_max_m", a.stop_max_m);
   EmitInt(out, "changed_look_frames", a.changed_look_frames);
   out << YAML::EndMap;

@@ -84,6 +84,9 @@ struct AdaptiveDynamicSettings {
   double still_max_m = 0.2;          // judged still only when displacement + k_sigma std errors is below this (m)
   double hold_s = 1.0;               // a dynamic object stays dynamic this long after its last motion (s)
   int confirm_frames = 2;            // consecutive judgements of motion before an object turns dynamic (frames)
+  int drop_frames = 1;               // consecutive judgements of motion after which its features are dropped
+                                     // (frames): below confirm_frames the object is tentatively dynamic, dropped
+                                     // but not held and its map points kept, until confirmed
   int min_matches = 6;               // matched features needed to judge an object (count)
   int interior_px = 6;               // features nearer than this to the mask's edge are not judged: corners on
                                      // the silhouette mix the object with the background behind it (px)
@@ -93,6 +96,8 @@ struct AdaptiveDynamicSettings {
                                      // mismatches (m)
   int max_hamming = 50;              // descriptor distance for matching an object's features over time (bits)
   double static_pose_min_share = 0.2;  // movable objects carry this share of inliers: judge with a pose from the rest (ratio)
+  int static_pose_outliers = 1;      // 1: that pose takes back the static matches the tracked pose rejected (a large
+                                     // moving object drags the tracked pose along); 0: the tracked inliers only
   double stop_max_m = 0.01;          // a still look whose median displacement is below this dates the object's
                                      // last motion no later than the look's start: the hold runs from there (m)
   int changed_look_frames = 2;       // within hold_s of a release, this many looks in a row that cannot be judged
