@@ -3,6 +3,7 @@
 // the exact plane homographies. The tracked poses must match the known path, and bad frames must be refused.
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -116,6 +117,19 @@ StereoFrame MakeFrame(int k, int variant = 0) {
   f.right_rgb = Render(T_right_left * T_c_w, variant);
   f.intrinsics = {kW, kH, kF, kF, (kW - 1) / 2.0, (kH - 1) / 2.0};
   f.baseline_m = kBaseline;
+  return f;
+}
+
+// Frame k of scene `variant` with its near panel moved by `shift` (m, world) and labelled a box
+// called `name` (instance 1 in the left image's instance ids).
+StereoFrame MakeFrameWithBox(int k, int variant, const Eigen::Vector3d& shift, const std::string& name) {
+  StereoFrame f = MakeFrame(k, variant);
+  const Eigen::Isometry3d T_c_w = TruePose(k).inverse();
+  Eigen::Isometry3d T_right_left = Eigen::Isometry3d::Identity();
+  T_right_left.translation() = Eigen::Vector3d(-kBaseline, 0, 0);
+  f.left_rgb = Render(T_c_w, variant, shift, &f.left_instance_id);
+  f.right_rgb = Render(T_right_left * T_c_w, variant, shift);
+  f.instances = {{1, Category::kBox, name}};
   return f;
 }
 
@@ -367,13 +381,7 @@ TEST(SlamSystem, AnObjectJudgedDynamicLeavesTheDecisionFramesPose) {
   double worst_m = 0;
   for (int k = 0; k < kFrames; ++k) {
     const Eigen::Vector3d shift(k < kStill ? 0.0 : 0.02 * (k - kStill), 0, 0);
-    StereoFrame f = MakeFrame(k);
-    const Eigen::Isometry3d T_c_w = TruePose(k).inverse();
-    Eigen::Isometry3d T_right_left = Eigen::Isometry3d::Identity();
-    T_right_left.translation() = Eigen::Vector3d(-kBaseline, 0, 0);
-    f.left_rgb = Render(T_c_w, 0, shift, &f.left_instance_id);
-    f.right_rgb = Render(T_right_left * T_c_w, 0, shift);
-    f.instances = {{1, Category::kBox, "panel"}};
+    const StereoFrame f = MakeFrameWithBox(k, 0, shift, "panel");
     const slam::TrackResult r = system.Track(f);
     ASSERT_NE(r.status, slam::TrackStatus::kLost) << "frame " << k;
     worst_m = std::max(worst_m, (r.T_w_c.translation() - TruePose(k).translation()).norm());
@@ -417,13 +425,7 @@ TEST(SlamSystem, ABoxThatFillsMostOfTheViewIsJudgedByTheStaticScene) {
   double worst_m = 0, share = 0, last_m = 0;
   for (int k = 0; k < kFrames; ++k) {
     const Eigen::Vector3d shift(k < kStill ? 0.0 : 0.0055 * (k - kStill), 0, 0);
-    StereoFrame f = MakeFrame(k, 2);
-    const Eigen::Isometry3d T_c_w = TruePose(k).inverse();
-    Eigen::Isometry3d T_right_left = Eigen::Isometry3d::Identity();
-    T_right_left.translation() = Eigen::Vector3d(-kBaseline, 0, 0);
-    f.left_rgb = Render(T_c_w, 2, shift, &f.left_instance_id);
-    f.right_rgb = Render(T_right_left * T_c_w, 2, shift);
-    f.instances = {{1, Category::kBox, "crate"}};
+    const StereoFrame f = MakeFrameWithBox(k, 2, shift, "crate");
     const slam::TrackResult r = system.Track(f);
     ASSERT_NE(r.status, slam::TrackStatus::kLost) << "frame " << k;
     last_m = (r.T_w_c.translation() - TruePose(k).translation()).norm();
