@@ -120,6 +120,14 @@ StereoFrame MakeFrame(int k, int variant = 0) {
   return f;
 }
 
+// SLAM settings with the adaptive dynamic-object stage on.
+slam::SlamSettings AdaptiveDynamicSettings() {
+  slam::SlamSettings settings;
+  settings.mode = "visual_dynamic";
+  settings.dynamic.method = "adaptive";
+  return settings;
+}
+
 // Frame k of scene `variant` with its near panel moved by `shift` (m, world) and labelled a box
 // called `name` (instance 1 in the left image's instance ids).
 StereoFrame MakeFrameWithBox(int k, int variant, const Eigen::Vector3d& shift, const std::string& name) {
@@ -372,10 +380,7 @@ TEST(SlamSystem, RelocalisationIsDeterministic) {
 // which tracking has already used, leave the frame's pose too (Tracker::ReposeWithout): the
 // report counts them all dropped and the pose stays on the known path on every frame.
 TEST(SlamSystem, AnObjectJudgedDynamicLeavesTheDecisionFramesPose) {
-  slam::SlamSettings settings;
-  settings.mode = "visual_dynamic";
-  settings.dynamic.method = "adaptive";
-  slam::SlamSystem system(settings);
+  slam::SlamSystem system(AdaptiveDynamicSettings());
   constexpr int kStill = 30;
   int decided_at = -1;
   double worst_m = 0;
@@ -416,10 +421,7 @@ TEST(SlamSystem, AnObjectJudgedDynamicLeavesTheDecisionFramesPose) {
 // worst and 6.5 mm at the end; judged by the tracked pose's inliers alone, frame 34, 95.4 mm and
 // 69 mm (on pushed_box at seed 2 the crate was never judged: 736 mm).
 TEST(SlamSystem, ABoxThatFillsMostOfTheViewIsJudgedByTheStaticScene) {
-  slam::SlamSettings settings;
-  settings.mode = "visual_dynamic";
-  settings.dynamic.method = "adaptive";
-  slam::SlamSystem system(settings);
+  slam::SlamSystem system(AdaptiveDynamicSettings());
   constexpr int kStill = 20;
   int decided_at = -1;
   double worst_m = 0, share = 0, last_m = 0;

@@ -204,7 +204,6 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
       }
       case DynamicMethod::kAdaptive:
         o.dynamic = o.motion.Add(Snapshot(t_ns, f, r.id, instance_id, T_w_c), settings_.adaptive, in_view);
-        o.confirmed = o.motion.confirmed();
         r.score = o.motion.last().displacement_m;
         r.threshold = o.motion.last().threshold_m;
         break;
@@ -212,7 +211,8 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
         break;
     }
     r.dynamic = o.dynamic;
-    if (method_ != DynamicMethod::kAdaptive) o.confirmed = o.dynamic;
+    // Only the adaptive test has tentative decisions; the others' are confirmed when made.
+    o.confirmed = method_ == DynamicMethod::kAdaptive ? o.motion.confirmed() : o.dynamic;
     if (o.dynamic && !was) turned.push_back(r.id);
     if (o.confirmed && !was_confirmed) just_confirmed_.push_back(r.id);
   }
