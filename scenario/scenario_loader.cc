@@ -326,9 +326,10 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   YamlMapReader adaptive = d.Map("adaptive");
   more(&adaptive, "adaptive.",
        {"lag_s", "threshold_m", "k_sigma", "disparity_sigma_px", "pixel_sigma_px", "max_speed_mps", "still_max_m",
-        "hold_s", "stop_max_m", "foreground_band_m", "static_pose_min_share"});
+        "hold_s", "stop_max_m", "foreground_band_m", "static_pose_min_share", "silhouette_threshold_m",
+        "silhouette_lag_s", "silhouette_growth_px", "silhouette_behind_m"});
   for (const char* key : {"confirm_frames", "drop_frames", "min_matches", "interior_px", "max_hamming",
-                          "changed_look_frames", "static_pose_outliers"}) {
+                          "changed_look_frames", "static_pose_outliers", "silhouette_min_rows"}) {
     int v = 0;
     if (adaptive.Integer(key, &v, NumberRange::NonNegative())) {
       s->dynamic.more.emplace_back(std::string("adaptive.") + key, std::to_string(v));

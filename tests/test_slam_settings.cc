@@ -146,6 +146,12 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(da.adaptive.max_hamming, db.adaptive.max_hamming);
   EXPECT_EQ(da.adaptive.static_pose_min_share, db.adaptive.static_pose_min_share);
   EXPECT_EQ(da.adaptive.stop_max_m, db.adaptive.stop_max_m);
+  EXPECT_EQ(da.adaptive.changed_look_frames, db.adaptive.changed_look_frames);
+  EXPECT_EQ(da.adaptive.silhouette_threshold_m, db.adaptive.silhouette_threshold_m);
+  EXPECT_EQ(da.adaptive.silhouette_lag_s, db.adaptive.silhouette_lag_s);
+  EXPECT_EQ(da.adaptive.silhouette_min_rows, db.adaptive.silhouette_min_rows);
+  EXPECT_EQ(da.adaptive.silhouette_growth_px, db.adaptive.silhouette_growth_px);
+  EXPECT_EQ(da.adaptive.silhouette_behind_m, db.adaptive.silhouette_behind_m);
 }
 
 // Number of "key: value" lines (not counting section headers) in YAML text.
@@ -166,7 +172,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 18 + 26;
+constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 23 + 26;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -229,7 +235,7 @@ TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
   s.dynamic.window_n = 12;
   s.dynamic.forget_s = 3;
   s.dynamic.prior = {0.9, 0.1, 0.4};
-  s.dynamic.adaptive = {0.8, 0.03, 2.5, 0.7, 0.4, 2.5, 0.15, 0.7, 3, 2, 8, 4, 0.25, 40, 0.3, 0};
+  s.dynamic.adaptive = {0.8, 0.03, 2.5, 0.7, 0.4, 2.5, 0.15, 0.7, 3, 2, 8, 4, 0.25, 40, 0.3, 0, 0.02, 3, 0.01, 0.2, 12, 1.5, 0.4};
   s.source_file = "/some/where.yaml";
 
   const std::string yaml = SlamSettingsToYaml(s);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace viqu::slam {
 namespace {
@@ -106,9 +107,11 @@ ObjectSnapshot DynamicObjects::Snapshot(int64_t t_ns, const FrameFeatures& f, ui
     while (!by_depth.empty() && by_depth.back().first > max_z) by_depth.pop_back();
   }
   if (by_depth.size() > kMaxSnapshotPoints) by_depth.resize(kMaxSnapshotPoints);
+  const double median_depth = by_depth.empty() ? 0.0 : static_cast<double>(by_depth[by_depth.size() / 2].first);
   ObjectSnapshot s;
   s.t_ns = t_ns;
   s.T_c_w = T_w_c.inverse();
+  s.depth_m = median_depth;
   s.descriptors.create(static_cast<int>(by_depth.size()), f.descriptors.cols, f.descriptors.type());
   const double sigma_d = settings_.adaptive.disparity_sigma_px, sigma_px = settings_.adaptive.pixel_sigma_px;
   for (size_t k = 0; k < by_depth.size(); ++k) {
@@ -159,7 +162,8 @@ void DynamicObjects::RestartMeasurements() {
 
 std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& f, const cv::Mat& instance_id,
                                              const Eigen::Isometry3d& T_c_w,
-                                             const std::vector<Eigen::Vector3d>& map_points_w) {
+                                             const std::vector<Eigen::Vector3d>& map_points_w,
+                                             const Eigen::Isometry3d* T_c_w_tracked) {
   std::vector<uint16_t> turned;
   just_confirmed_.clear();
   const int64_t forget_ns = static_cast<int64_t>(settings_.forget_s * 1e9);
@@ -182,6 +186,25 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
   };
   std::map<uint16_t, double> norms;
   if (method_ == DynamicMethod::kPaper) norms = LabelledPointNorms(instance_id, T_c_w, map_points_w);
+  std::map<uint16_t, Silhouette> silhouettes;
+  // The masks' silhouettes, for the adaptive test's look at a mask that moves (one pass over the image).
+  if (method_ == DynamicMethod::kAdaptive && settings_.adaptive.silhouette_threshold_m > 0) {
+    std::set<uint16_t> ids;
+    for (const ObjectReport& r : reports_) ids.insert(r.id);
+    // Each instance's median feature depth: a neighbour behind an object does not hide its edge.
+    std::map<uint16_t, std::vector<float>> depths;
+    for (size_t i = 0; i < f.size(); ++i) {
+      if (f.object[i] != 0 && f.depth[i] > 0) depths[f.object[i]].push_back(f.depth[i]);
+    }
+    std::map<uint16_t, double> depth_m;
+    for (auto& [id, z] : depths) {
+      std::nth_element(z.begin(), z.begin() + static_cast<long>(z.size() / 2), z.end());
+      depth_m[id] = z[z.size() / 2];
+    }
+    silhouettes = ExtractSilhouettes(instance_id, ids, static_cast<int>(kBorderPx), depth_m,
+                                     settings_.adaptive.silhouette_behind_m);
+    for (auto& [id, sil] : silhouettes) sil.T_c_w = T_c_w_tracked != nullptr ? *T_c_w_tracked : T_c_w;
+  }
   for (ObjectReport& r : reports_) {
     ObjectState& o = objects_[r.id];
     o.last_seen_ns = t_ns;
@@ -202,11 +225,15 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
         r.threshold = settings_.th_d;
         break;
       }
-      case DynamicMethod::kAdaptive:
-        o.dynamic = o.motion.Add(Snapshot(t_ns, f, r.id, instance_id, T_w_c), settings_.adaptive, in_view);
+      case DynamicMethod::kAdaptive: {
+        ObjectSnapshot snap = Snapshot(t_ns, f, r.id, instance_id, T_w_c);
+        const auto sil = silhouettes.find(r.id);
+        if (sil != silhouettes.end()) snap.silhouette = std::move(sil->second);
+        o.dynamic = o.motion.Add(std::move(snap), settings_.adaptive, in_view, &cam_);
         r.score = o.motion.last().displacement_m;
         r.threshold = o.motion.last().threshold_m;
         break;
+      }
       case DynamicMethod::kNone:
         break;
     }

@@ -65,8 +65,11 @@ class DynamicObjects {
   // the paper's method only. Returns
   // the ids that have turned dynamic with this frame (tentatively or confirmed; see
   // ObjectMotionTrack::Add).
+  // `T_c_w_tracked` (may be null: T_c_w) is the tracked pose, from every feature kept, with which
+  // the adaptive test carries masks between frames.
   std::vector<uint16_t> Update(int64_t t_ns, const FrameFeatures& f, const cv::Mat& instance_id,
-                               const Eigen::Isometry3d& T_c_w, const std::vector<Eigen::Vector3d>& map_points_w);
+                               const Eigen::Isometry3d& T_c_w, const std::vector<Eigen::Vector3d>& map_points_w,
+                               const Eigen::Isometry3d* T_c_w_tracked = nullptr);
 
   // The world frame has jumped (a relocalisation, a new map segment): the objects' motion
   // measurements start again; their decisions stand.

@@ -21,6 +21,8 @@
 #include <Eigen/Geometry>
 #include <opencv2/core/mat.hpp>
 
+#include "slam/core/camera.h"
+#include "slam/core/silhouette.h"
 #include "slam/settings/slam_settings.h"
 
 namespace viqu::slam {
@@ -34,6 +36,8 @@ struct ObjectSnapshot {
   std::vector<double> sigma_lateral_m;  // standard deviation across the ray, from the keypoint position
                                         // (m; empty: as sigma_m, an isotropic error)
   cv::Mat descriptors;               // CV_8U, one 32-byte row per point
+  Silhouette silhouette;             // the object's mask (empty: none given)
+  double depth_m = 0;                // the object's median depth in the camera (m; 0: no features with depth)
   size_t size() const { return p_w.size(); }
 };
 
@@ -54,6 +58,8 @@ struct MotionMeasurement {
   bool still = false;                // judged, |displacement + k_sigma std errors| < still_max_m, over at
                                      // least half of lag_s: the measurement rules out motion (far, noisy
                                      // objects and short looks are neither moving nor still)
+  bool by_silhouette = false;        // moving by the silhouette's shift, not by the features
+  double silhouette_m = 0;           // that shift less k_sigma standard errors, at the object's depth (m)
 };
 
 // Whether a world point (m) lies in the image, well inside its edges, of a camera at T_c_w.
@@ -85,7 +91,12 @@ class ObjectMotionTrack {
   // features for a frame costs little; keeping a walker's costs the pose, so the features go at
   // the first sign of motion, while the hold and the culling of its map points wait for the
   // confirmation.
-  bool Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view = {});
+  // Before the object is dynamic, a look whose features do not show motion may still show it by its
+  // silhouette (MeasureSilhouetteShift against the snapshot nearest silhouette_lag_s earlier; needs
+  // `cam`, the snapshots' silhouettes and depths): a walker setting off. Such a look drops the
+  // object's features (tentatively) but never confirms it.
+  bool Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettings& s, const InViewIfStatic& in_view = {},
+           const StereoCamera* cam = nullptr);
   // Dynamic by a confirmed judgement (not merely tentatively).
   bool confirmed() const { return dynamic_; }
   const MotionMeasurement& last() const { return last_; }
@@ -100,6 +111,9 @@ class ObjectMotionTrack {
     int jumps_to_next = -1;  // 1 when the next snapshot differs from it faster than max_speed_mps (a
                              // transient mismatch), 0 when not, -1 not yet measured
   };
+  // The silhouette's look (see Add): makes last_ a look of motion when the mask moved.
+  void LookAtSilhouette(const ObjectSnapshot& snapshot, const AdaptiveDynamicSettings& s, const StereoCamera* cam);
+
   std::deque<Past> history_;  // oldest first, all within lag_s of the newest
   MotionMeasurement last_;
   int64_t last_motion_ns_ = 0;      // end of the last look that saw motion, or the start of a later

@@ -130,6 +130,7 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
   }
   if (m.dynamic->method() != DynamicMethod::kNone && r.status != TrackStatus::kLost && !m.dynamic->reports().empty()) {
     Eigen::Isometry3d T_c_w = m.tracker.LastPose();
+    const Eigen::Isometry3d T_c_w_tracked = T_c_w;
     if (m.dynamic->NeedsPose()) {
       std::vector<bool> movable(static_cast<size_t>(m.dynamic->reports().back().id) + 1, false);
       for (const ObjectReport& o : m.dynamic->reports()) movable[o.id] = true;
@@ -138,7 +139,7 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
     }
     const std::vector<Eigen::Vector3d> points =
         m.dynamic->NeedsMapPoints() ? m.tracker.LocalMapPointPositions() : std::vector<Eigen::Vector3d>{};
-    const std::vector<uint16_t> turned = m.dynamic->Update(frame.t_ns, *features, frame.left_instance_id, T_c_w, points);
+    const std::vector<uint16_t> turned = m.dynamic->Update(frame.t_ns, *features, frame.left_instance_id, T_c_w, points, &T_c_w_tracked);
     if (!turned.empty()) {
       // The objects judged dynamic on this frame leave its pose too, not only the next frames':
       // their features go as if they had been dropped before tracking.

@@ -157,6 +157,11 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   a.Integer("static_pose_outliers", &ad->static_pose_outliers, NumberRange::Closed(0, 1));
   a.Number("stop_max_m", &ad->stop_max_m, NumberRange::NonNegative());
   a.Integer("changed_look_frames", &ad->changed_look_frames, NumberRange::Closed(0, 1000));
+  a.Number("silhouette_threshold_m", &ad->silhouette_threshold_m, NumberRange::NonNegative());
+  a.Number("silhouette_lag_s", &ad->silhouette_lag_s, NumberRange::OpenClosed(0, 60));
+  a.Integer("silhouette_min_rows", &ad->silhouette_min_rows, kCount1);
+  a.Number("silhouette_growth_px", &ad->silhouette_growth_px, NumberRange::Closed(0, 100));
+  a.Number("silhouette_behind_m", &ad->silhouette_behind_m, NumberRange::NonNegative());
   a.RejectUnknownKeys();
   m->RejectUnknownKeys();
 }
@@ -349,6 +354,11 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitInt(out, "static_pose_outliers", a.static_pose_outliers);
   EmitNumber(out, "stop_max_m", a.stop_max_m);
   EmitInt(out, "changed_look_frames", a.changed_look_frames);
+  EmitNumber(out, "silhouette_threshold_m", a.silhouette_threshold_m);
+  EmitNumber(out, "silhouette_lag_s", a.silhouette_lag_s);
+  EmitInt(out, "silhouette_min_rows", a.silhouette_min_rows);
+  EmitNumber(out, "silhouette_growth_px", a.silhouette_growth_px);
+  EmitNumber(out, "silhouette_behind_m", a.silhouette_behind_m);
   out << YAML::EndMap;
   out << YAML::EndMap;
 

@@ -103,6 +103,15 @@ struct AdaptiveDynamicSettings {
   int changed_look_frames = 2;       // within hold_s of a release, this many looks in a row that cannot be judged
                                      // (with at least min_matches features with depth) make it dynamic again
                                      // (frames; 0 = never)
+  double silhouette_threshold_m = 0.015;  // before an object is dynamic, a motion of its mask's free edges across the
+                                          // view beyond k_sigma standard errors and this, against the mask of
+                                          // silhouette_lag_s earlier, is also a look of motion (m; 0 = off)
+  double silhouette_lag_s = 0.1;     // how far back that mask is (s)
+  int silhouette_min_rows = 10;      // mask edges (row ends bordering the background) needed on a side (count)
+  double silhouette_growth_px = 2;   // a detector's mask grows or shrinks by up to this from frame to frame: the
+                                     // shift of one side alone must exceed it (both sides cancel it) (px)
+  double silhouette_behind_m = 0.3;  // a mask's end that meets another instance is the object's own edge when that
+                                     // instance's median depth lies this much farther (m)
 };
 
 // Dynamic objects (paper eqs. 1-4): how objects in the segmentation masks are judged.
