@@ -625,6 +625,33 @@ TEST(DynamicObjects, EgoMotionDoesNotMakeStaticObjectsDynamic) {
   }
 }
 
+// The stage with an instance image: the person's features stay put (a stance leg) while its mask
+// moves 4 cm a frame across the view from frame 10 (18 px at its 1 m). The stage turns it
+// dynamic, tentatively, on frame 11 and drops its features from frame 12; a mask that stays, or
+// the mask's look switched off, keeps them.
+TEST(DynamicObjects, AMaskThatMovesDropsAnObjectWhoseFeaturesStay) {
+  const auto first_drop = [](double mask_speed_mps, double threshold_m) {
+    StageFixture fx;
+    SlamSettings settings;
+    settings.dynamic.adaptive.silhouette_threshold_m = threshold_m;
+    DynamicObjects stage(settings, fx.cam);
+    const Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    for (int k = 0; k < 30; ++k) {
+      const FrameFeatures f = fx.Features(k * kFrameNs, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+      const std::vector<bool> keep = stage.KeepMask(f, StageFixture::Instances());
+      if (stage.reports()[0].dropped > 0) return k;
+      const int shift_px = static_cast<int>(std::lround(mask_speed_mps * std::max(0, k - 10) * 0.05 * kFx / 1.0));
+      cv::Mat ids(480, 640, CV_16U, cv::Scalar(0));
+      ids(cv::Rect(200 + shift_px, 120, 240, 240) & cv::Rect(0, 0, 640, 480)).setTo(cv::Scalar(3));
+      stage.Update(k * kFrameNs, f, ids, pose, {}, &pose);
+    }
+    return -1;
+  };
+  EXPECT_EQ(first_drop(0.8, 0.015), 12);
+  EXPECT_EQ(first_drop(0.0, 0.015), -1);
+  EXPECT_EQ(first_drop(0.8, 0.0), -1);
+}
+
 // A rectangular silhouette: columns [lo, hi] over rows 150-348, the right side meeting another
 // object (id 9) when `one_sided`.
 Silhouette RectSilhouette(int lo, int hi, bool one_sided) {
