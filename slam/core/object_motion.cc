@@ -6,20 +6,12 @@
 #include <limits>
 
 #include "slam/core/map.h"
+#include "slam/core/median.h"
 
 namespace viqu::slam {
 namespace {
 
 constexpr double kMatchRatio = 0.8;      // best / second-best Hamming distance (Lowe's test)
-constexpr double kMedianEfficiency = 1.2533;  // std error of a median = sqrt(pi/2) * sigma / sqrt(n)
-
-double Median(std::vector<double> v) {
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
-  double m = v[mid];
-  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<long>(mid)));
-  return m;
-}
 
 // Best and second-best distance from row i of `a` to the rows of `b` (those with `usable_b` set,
 // when it is not empty); index of the best.

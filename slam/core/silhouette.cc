@@ -3,17 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "slam/core/median.h"
+
 namespace viqu::slam {
 namespace {
-
-double MedianOf(std::vector<double> v) {
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
-  double m = v[mid];
-  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<long>(mid)));
-  return m;
-}
-
 
 // Median and its standard error of one side's end shifts.
 struct Side {
@@ -21,14 +14,14 @@ struct Side {
 };
 Side SideOf(const std::vector<double>& d) {
   Side s;
-  s.median = MedianOf(d);
+  s.median = Median(d);
   std::vector<double> dev(d.size());
   for (size_t k = 0; k < d.size(); ++k) dev[k] = std::abs(d[k] - s.median);
   // The ends' spread by the median absolute deviation (1.4826: to a standard deviation), and the
-  // median's standard error (1.25 / sqrt(n)) over independent ends: neighbouring rows share the
-  // mask's noise, so about one in four sampled rows (8 px) counts as independent.
-  constexpr double kMadToSigma = 1.4826, kMedianEfficiency = 1.25, kRowsPerIndependent = 4;
-  const double sigma = kMadToSigma * MedianOf(dev);
+  // median's standard error over independent ends: neighbouring rows share the mask's noise, so
+  // about one in four sampled rows (8 px) counts as independent.
+  constexpr double kMadToSigma = 1.4826, kRowsPerIndependent = 4;
+  const double sigma = kMadToSigma * Median(dev);
   s.std_error = kMedianEfficiency * sigma / std::sqrt(std::max(1.0, d.size() / kRowsPerIndependent));
   return s;
 }
