@@ -662,7 +662,7 @@ Silhouette RectSilhouette(int lo, int hi, bool one_sided) {
     s.hi.push_back(one_sided ? -1 : hi);
   }
   s.frame_ids = {3, 9};
-  if (one_sided) s.touches = {9};
+  if (one_sided) s.touches_hi = {9};
   return s;
 }
 

@@ -50,7 +50,8 @@ TEST(Silhouette, KeepsTheEndsThatBorderTheBackgroundAwayFromTheImageEdges) {
     EXPECT_EQ(s3.lo[k], 100);
     EXPECT_EQ(s3.hi[k], s3.v[k] < 200 ? 199 : -1) << s3.v[k];  // the end that meets 4 does not count
   }
-  EXPECT_EQ(s3.touches, std::vector<uint16_t>({4}));
+  EXPECT_TRUE(s3.touches_lo.empty());
+  EXPECT_EQ(s3.touches_hi, std::vector<uint16_t>({4}));
   EXPECT_EQ(s3.frame_ids, std::vector<uint16_t>({3, 4, 5}));
   const Silhouette& s4 = all.at(4);
   EXPECT_EQ(s4.lo.front(), -1);
@@ -71,7 +72,7 @@ TEST(Silhouette, AnEndInFrontOfAFartherInstanceCounts) {
   Fill(&m, 4, 200, 259, 100, 199);
   const auto right_end = [&](const std::map<uint16_t, double>& depth) {
     const Silhouette s = ExtractSilhouettes(m, {3, 4}, kBorderPx, depth, 0.3).at(3);
-    EXPECT_EQ(s.touches.empty(), s.hi.front() >= 0);
+    EXPECT_EQ(s.touches_hi.empty(), s.hi.front() >= 0);
     return s.hi.front();
   };
   EXPECT_EQ(right_end({{3, 1.0}, {4, 2.0}}), 199);  // 4 stands 1 m behind
@@ -128,19 +129,31 @@ TEST(Silhouette, BothSidesCancelTheMasksGrowth) {
 }
 
 // A neighbour that the detector missed in one frame leaves background where it met the object: a
-// false free end. The comparison is refused.
-TEST(Silhouette, AMissingNeighbourRefusesTheComparison) {
+// false free end. The side it meets is left out of the comparison; the other side still counts.
+TEST(Silhouette, AMissingNeighbourLeavesItsSideOut) {
   const StereoCamera cam = Camera();
   cv::Mat ref = Blank(), cur = Blank();
   Fill(&ref, 3, 300, 379, 150, 349);
   Fill(&ref, 4, 380, 420, 150, 249);  // meets the upper half of 3's right side
-  Fill(&cur, 3, 300, 379, 150, 349);  // 4 missed
-  EXPECT_EQ(MeasureSilhouetteShift(Of(ref, 3), 1.5, Of(cur, 3), cam, 10).rows, 0);
-  EXPECT_EQ(MeasureSilhouetteShift(Of(cur, 3), 1.5, Of(ref, 3), cam, 10).rows, 0);
-  Fill(&cur, 4, 380, 420, 150, 249);  // detected again
+  Fill(&cur, 3, 306, 379, 150, 349);  // 4 missed; 3's left side 6 px to the right
+  for (const bool ref_first : {true, false}) {
+    const SilhouetteShift s = ref_first ? MeasureSilhouetteShift(Of(ref, 3), 1.5, Of(cur, 3), cam, 10)
+                                        : MeasureSilhouetteShift(Of(cur, 3), 1.5, Of(ref, 3), cam, 10);
+    EXPECT_EQ(s.rows, 100);  // the left ends alone
+    EXPECT_FALSE(s.two_sided);
+    EXPECT_NEAR(s.shift_px, ref_first ? 6.0 : -6.0, 1e-6);
+  }
+  Fill(&cur, 4, 380, 420, 150, 249);  // detected again: both sides, 3's left end moved 6 px
   const SilhouetteShift both = MeasureSilhouetteShift(Of(ref, 3), 1.5, Of(cur, 3), cam, 10);
   EXPECT_EQ(both.rows, 150);  // 100 left ends, 50 right ends below 4
-  EXPECT_NEAR(both.shift_px, 0.0, 1e-6);
+  EXPECT_TRUE(both.two_sided);
+  EXPECT_NEAR(both.shift_px, 3.0, 1e-6);
+  // Met on both sides by instances the other frame lacks: nothing is compared.
+  Fill(&ref, 5, 280, 299, 150, 349);
+  cv::Mat alone = Blank();
+  Fill(&alone, 3, 300, 379, 150, 349);
+  EXPECT_EQ(MeasureSilhouetteShift(Of(ref, 3), 1.5, Of(alone, 3), cam, 10).rows, 0);
+  EXPECT_EQ(MeasureSilhouetteShift(Of(alone, 3), 1.5, Of(ref, 3), cam, 10).rows, 0);
 }
 
 }  // namespace

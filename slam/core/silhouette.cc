@@ -52,7 +52,7 @@ std::map<uint16_t, Silhouette> ExtractSilhouettes(const cv::Mat& instance_id, co
   };
   std::vector<Extent> ext(list.size());
   std::vector<bool> present(65536, false);
-  std::vector<std::set<uint16_t>> touches(list.size());
+  std::vector<std::set<uint16_t>> touches_lo(list.size()), touches_hi(list.size());
   std::vector<Silhouette> sil(list.size());
   for (int y = 0; y < instance_id.rows; y += kSilhouetteRowStep) {
     const uint16_t* row = instance_id.ptr<uint16_t>(y);
@@ -73,15 +73,15 @@ std::map<uint16_t, Silhouette> ExtractSilhouettes(const cv::Mat& instance_id, co
       // An end is the object's own edge where it meets the background or an instance behind it;
       // one that meets a nearer instance (or whose neighbour's depth is unknown) may be where that
       // instance hides it. Ends at the image's edge are left out.
-      const auto own_edge = [&](int x_out) {
+      const auto own_edge = [&](int x_out, std::set<uint16_t>* touches) {
         if (x_out < 0 || x_out >= w) return false;
         const uint16_t nb = row[x_out];
         if (nb == 0 || behind(nb, id)) return true;
-        touches[k].insert(nb);
+        touches->insert(nb);
         return false;
       };
-      const bool lo = own_edge(e.lo - 1) && e.lo >= border_px;
-      const bool hi = own_edge(e.hi + 1) && e.hi <= w - 1 - border_px;
+      const bool lo = own_edge(e.lo - 1, &touches_lo[k]) && e.lo >= border_px;
+      const bool hi = own_edge(e.hi + 1, &touches_hi[k]) && e.hi <= w - 1 - border_px;
       if (!lo && !hi) continue;
       sil[k].v.push_back(y);
       sil[k].lo.push_back(lo ? e.lo : -1);
@@ -97,7 +97,8 @@ std::map<uint16_t, Silhouette> ExtractSilhouettes(const cv::Mat& instance_id, co
     Silhouette& s = out[list[k]];
     s = std::move(sil[k]);
     s.frame_ids = frame_ids;
-    s.touches.assign(touches[k].begin(), touches[k].end());
+    s.touches_lo.assign(touches_lo[k].begin(), touches_lo[k].end());
+    s.touches_hi.assign(touches_hi[k].begin(), touches_hi[k].end());
   }
   return out;
 }
@@ -112,11 +113,14 @@ SilhouetteShift MeasureSilhouetteShift(const Silhouette& ref, double z_ref, cons
     }
     return true;
   };
-  if (!all_in(ref.touches, cur.frame_ids) || !all_in(cur.touches, ref.frame_ids)) return out;
+  // Sides whose neighbours are present in both frames (left, right).
+  const bool comparable[2] = {all_in(ref.touches_lo, cur.frame_ids) && all_in(cur.touches_lo, ref.frame_ids),
+                              all_in(ref.touches_hi, cur.frame_ids) && all_in(cur.touches_hi, ref.frame_ids)};
   const Eigen::Isometry3d T_cur_ref = cur.T_c_w * ref.T_c_w.inverse();
   std::vector<double> d[2];  // left ends, right ends
   for (size_t k = 0; k < ref.v.size(); ++k) {
     for (const bool left : {true, false}) {
+      if (!comparable[left ? 0 : 1]) continue;
       const int u = left ? ref.lo[k] : ref.hi[k];
       if (u < 0) continue;
       const Eigen::Vector3d p = T_cur_ref * cam.Unproject(u, ref.v[k], z_ref);

@@ -34,10 +34,11 @@ struct Silhouette {
   // or an instance behind it) away from the image's edges: row, leftmost and rightmost column
   // (px; -1: that end does not count).
   std::vector<int> v, lo, hi;
-  // Other instances met at the ends that may hide the object, and every instance in the frame
-  // (sorted): a missed detection of a neighbour turns its border with the object into background,
-  // a false free end, so a comparison needs each frame's neighbours present in the other frame.
-  std::vector<uint16_t> touches, frame_ids;
+  // Other instances met at the left and at the right ends that may hide the object, and every
+  // instance in the frame (sorted): a missed detection of a neighbour turns its border with the
+  // object into background, a false free end, so a side is compared only when the neighbours met
+  // on that side in each frame are present in the other frame.
+  std::vector<uint16_t> touches_lo, touches_hi, frame_ids;
   // The camera's pose (world to camera) the silhouette is carried with: the tracked pose, from
   // every feature kept (the pose from the static scene alone, with which features are judged, errs
   // by up to a degree where people carry most of the view: 6 px, 2-3 cm at their distance).
@@ -67,9 +68,10 @@ struct SilhouetteShift {
 };
 
 // Carries `ref` (seen at depth `z_ref`, m) into the current camera (by the two silhouettes' poses)
-// as if it stood still, and compares its free row ends with `cur`'s. Nothing is
-// compared (rows 0) when an instance that meets the object in one frame is missing from the other.
-// A side with fewer than `min_side_rows` ends is left out.
+// as if it stood still, and compares its free row ends with `cur`'s. A side is left out when an
+// instance that meets the object on that side in one frame is missing from the other (a person
+// uncovered by a walker setting off appears at the walker's trailing side only), or when it has
+// fewer than `min_side_rows` ends.
 SilhouetteShift MeasureSilhouetteShift(const Silhouette& ref, double z_ref, const Silhouette& cur, const StereoCamera& cam,
                                        int min_side_rows);
 
