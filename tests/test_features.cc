@@ -1,6 +1,7 @@
 // ORB features cover the image and stereo matching recovers depth, checked on a rendered stereo
 // pair of the room against the renderer's metric depth.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include "runner/robot_rig.h"
 #include "sim/stereo_renderer.h"
 #include "slam/features/orb_extractor.h"
+#include "slam/features/pyramid_level.h"
 #include "slam/features/stereo_matcher.h"
 
 namespace viqu {
@@ -92,14 +94,27 @@ TEST(Features, MaskedPixelsGetNoFeatures) {
 }
 
 TEST(Features, StereoDepthMatchesRenderedDepth) {
+  for (const bool centres : {false, true})
   for (const auto& view : {std::array<double, 3>{0.0, 0.0, 30.0}, std::array<double, 3>{-1.0, -1.0, 0.0}}) {
     const RenderedPair p = RenderRoom(view[0], view[1], view[2]);
-    slam::OrbExtractor orb;
+    slam::OrbExtractorOptions orb_opt;
+    orb_opt.level_pixel_centres = centres;
+    slam::OrbExtractor orb(orb_opt);
     std::vector<cv::KeyPoint> kl, kr;
     cv::Mat dl, dr;
     orb.Extract(p.left, cv::Mat(), &kl, &dl);
     orb.Extract(p.right, cv::Mat(), &kr, &dr);
-    slam::StereoMatcher matcher;
+    // Each keypoint lies on a pixel of its level, by the mapping chosen.
+    for (const cv::KeyPoint& k : kl) {
+      const double s = orb.ScaleOfLevel(k.octave);
+      const slam::PyramidLevel level(p.left.size(), s);
+      const double x = centres ? level.ToLevelX(k.pt.x) : k.pt.x / s, y = centres ? level.ToLevelY(k.pt.y) : k.pt.y / s;
+      ASSERT_NEAR(x, std::round(x), 1e-3) << "octave " << k.octave;
+      ASSERT_NEAR(y, std::round(y), 1e-3) << "octave " << k.octave;
+    }
+    slam::StereoMatcherOptions stereo_opt;
+    stereo_opt.level_pixel_centres = centres;
+    slam::StereoMatcher matcher(stereo_opt);
     const auto matches = matcher.Match(p.left, p.right, kl, dl, kr, dr, p.frame.intrinsics.fx, p.frame.baseline_m);
     // Features whose true depth is within the matcher's depth range should get a depth.
     const double max_depth = slam::StereoMatcherOptions().max_depth_baselines * p.frame.baseline_m;
@@ -126,9 +141,9 @@ TEST(Features, StereoDepthMatchesRenderedDepth) {
     std::sort(rel.begin(), rel.end());
     ASSERT_FALSE(rel.empty());
     const double median = rel[rel.size() / 2], p90 = rel[rel.size() * 9 / 10];
-    std::printf("view (%g, %g, %g deg): %zu left features (%d on depth edges, not scored), %d nearer than "
+    std::printf("%s view (%g, %g, %g deg): %zu left features (%d on depth edges, not scored), %d nearer than "
                 "%.2f m, %zu of those with stereo depth, relative depth error median %.2f%% p90 %.2f%%\n",
-                view[0], view[1], view[2], kl.size(), on_edges, in_range, max_depth, rel.size(), 100 * median,
+                centres ? "level pixel centres" : "x * scale^l", view[0], view[1], view[2], kl.size(), on_edges, in_range, max_depth, rel.size(), 100 * median,
                 100 * p90);
     // At least half of the features within the depth range get a depth.
     EXPECT_GT(rel.size(), in_range / 2);
@@ -138,4 +153,44 @@ TEST(Features, StereoDepthMatchesRenderedDepth) {
 }
 
 }  // namespace
+// A pixel of pyramid level l lies at (x + 0.5) * cols / level_cols - 0.5 in the image, which is
+// where cv::resize samples it: a smooth blob resized to each level and found there by its
+// centroid maps back onto its image position. x * 1.2^l (the mapping before) misses by up to
+// (1.2^l - 1) / 2 px plus the level's rounded size (0.4 px at level 7 for the second blob).
+TEST(Features, PyramidLevelMapsLevelPixelsOntoTheImage) {
+  const cv::Size image(640, 480);
+  for (int l = 1; l < 8; ++l) {
+    const double s = std::pow(1.2, l);
+    const slam::PyramidLevel level(image, s);
+    EXPECT_EQ(level.size(), cv::Size(cvRound(640 / s), cvRound(480 / s)));
+    for (const cv::Point2d c : {cv::Point2d(200.3, 180.7), cv::Point2d(430.6, 300.2)}) {
+      // Wide enough (6 level pixels) that point sampling by the bilinear resize keeps its centroid.
+      const double sigma = 6.0 * s;
+      cv::Mat img(image, CV_32F);
+      for (int v = 0; v < img.rows; ++v) {
+        for (int u = 0; u < img.cols; ++u) {
+          const double r2 = (u - c.x) * (u - c.x) + (v - c.y) * (v - c.y);
+          img.at<float>(v, u) = static_cast<float>(std::exp(-0.5 * r2 / (sigma * sigma)));
+        }
+      }
+      cv::Mat small;
+      cv::resize(img, small, level.size(), 0, 0, cv::INTER_LINEAR);
+      double sw = 0, sx = 0, sy = 0;
+      for (int v = 0; v < small.rows; ++v) {
+        for (int u = 0; u < small.cols; ++u) {
+          const double w = small.at<float>(v, u);
+          sw += w;
+          sx += w * u;
+          sy += w * v;
+        }
+      }
+      const double xl = sx / sw, yl = sy / sw;
+      EXPECT_NEAR(level.ToImageX(xl), c.x, 0.02) << "level " << l;
+      EXPECT_NEAR(level.ToImageY(yl), c.y, 0.02) << "level " << l;
+      EXPECT_NEAR(level.ToLevelX(level.ToImageX(xl)), xl, 1e-9);
+      EXPECT_NEAR(level.ToLevelY(level.ToImageY(yl)), yl, 1e-9);
+    }
+  }
+}
+
 }  // namespace viqu

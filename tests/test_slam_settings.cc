@@ -61,6 +61,8 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(a.orb.fast_threshold, b.orb.fast_threshold);
   EXPECT_EQ(a.orb.fast_threshold_min, b.orb.fast_threshold_min);
   EXPECT_EQ(a.orb.cell_px, b.orb.cell_px);
+  EXPECT_EQ(a.orb.level_pixel_centres, b.orb.level_pixel_centres);
+  EXPECT_EQ(a.stereo.level_pixel_centres, b.stereo.level_pixel_centres);
 
   EXPECT_EQ(a.stereo.max_hamming, b.stereo.max_hamming);
   EXPECT_EQ(a.stereo.row_band_px, b.stereo.row_band_px);
@@ -172,7 +174,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 6 + 10 + 29 + 9 + 8 + 3 + 23 + 26;
+constexpr int kLeafKeys = 4 + 7 + 10 + 29 + 9 + 8 + 3 + 23 + 26;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -204,7 +206,8 @@ TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
   s.input = "rgbd";
   s.rgbd_max_depth_m = 4.123456789012345;
   s.rgbd_virtual_baseline_m = 0.1 + 0.2;  // not the shortest decimal of its neighbours
-  s.orb = {2000, 1.3, 6, 25, 5, 40};
+  s.orb = {2000, 1.3, 6, 25, 5, 40, true};
+  s.stereo.level_pixel_centres = true;  // read from orb.level_pixel_centres
   s.stereo.max_hamming = 60;
   s.stereo.row_band_px = 0;
   s.stereo.sad_half_window = 3;

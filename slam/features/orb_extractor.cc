@@ -7,6 +7,8 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "slam/features/pyramid_level.h"
+
 namespace viqu::slam {
 namespace {
 
@@ -123,7 +125,7 @@ void OrbExtractor::Extract(const cv::Mat& grey, const cv::Mat& mask, std::vector
   cv::Mat level_img = grey, level_mask = mask;
   for (int l = 0; l < opt_.num_levels; ++l) {
     if (l > 0) {
-      const cv::Size size(cvRound(grey.cols / scales_[l]), cvRound(grey.rows / scales_[l]));
+      const cv::Size size = PyramidLevel(grey.size(), scales_[l]).size();
       cv::resize(grey, level_img, size, 0, 0, cv::INTER_LINEAR);
       if (!mask.empty()) cv::resize(mask, level_mask, size, 0, 0, cv::INTER_NEAREST);
     }
@@ -131,6 +133,7 @@ void OrbExtractor::Extract(const cv::Mat& grey, const cv::Mat& mask, std::vector
       k.angle = CentroidAngle(level_img, k.pt, umax_);
       k.octave = l;
       k.size = static_cast<float>(kPatchSize * scales_[l]);
+      // OpenCV's descriptor pass finds a keypoint on its level at pt / scale: hand it that.
       k.pt *= static_cast<float>(scales_[l]);
       keypoints->push_back(k);
     }
@@ -138,6 +141,15 @@ void OrbExtractor::Extract(const cv::Mat& grey, const cv::Mat& mask, std::vector
   // Descriptors: OpenCV's rotated BRIEF on its own pyramid with the same levels, for the
   // keypoints (and angles) chosen above.
   brief_->detectAndCompute(grey, cv::noArray(), *keypoints, *descriptors, true);
+  // Then, with level_pixel_centres, each keypoint goes where its level pixel lies in the image
+  // (pyramid_level.h); without, it stays at x * scale^l (ORB-SLAM's and OpenCV's convention).
+  if (!opt_.level_pixel_centres) return;
+  for (cv::KeyPoint& k : *keypoints) {
+    if (k.octave <= 0) continue;
+    const double s = scales_[static_cast<size_t>(k.octave)];
+    const PyramidLevel level(grey.size(), s);
+    k.pt = level.ToImage(cv::Point2f(static_cast<float>(std::round(k.pt.x / s)), static_cast<float>(std::round(k.pt.y / s))));
+  }
 }
 
 }  // namespace viqu::slam

@@ -23,6 +23,8 @@ struct OrbExtractorOptions {
   int fast_threshold = 20;     // initial FAST threshold (grey levels)
   int fast_threshold_min = 7;  // retry threshold for cells that found nothing
   int cell_px = 32;            // grid cell size at each level (px)
+  bool level_pixel_centres = false;  // a coarse level's keypoint at its pixel's place in the image
+                                     // (pyramid_level.h) rather than at x * scale^l
 };
 
 // No corners this close to a level's border (px): the rotated BRIEF patch must fit.

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "slam/features/hamming.h"
+#include "slam/features/pyramid_level.h"
 
 namespace viqu::slam {
 namespace {
@@ -74,9 +75,8 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
   auto level = [&](std::vector<cv::Mat>& pyr, const cv::Mat& base, int l) -> const cv::Mat& {
     if (pyr.size() <= static_cast<size_t>(l)) pyr.resize(l + 1);
     if (pyr[l].empty()) {
-      const double s = std::pow(opt_.scale_factor, l);
       if (l == 0) pyr[l] = base;
-      else cv::resize(base, pyr[l], cv::Size(cvRound(base.cols / s), cvRound(base.rows / s)), 0, 0, cv::INTER_LINEAR);
+      else cv::resize(base, pyr[l], PyramidLevel(base.size(), std::pow(opt_.scale_factor, l)).size(), 0, 0, cv::INTER_LINEAR);
     }
     return pyr[l];
   };
@@ -111,15 +111,21 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
 
     // SAD along the row at the left feature's level: around the descriptor match, or, without
     // one (the right image has no keypoint at this corner), over the whole disparity range.
-    const double s = std::pow(opt_.scale_factor, kl.octave);
+    // The level's own pixel grid: with level_pixel_centres the keypoint sits where its level pixel
+    // lies in the image (pyramid_level.h), without it at x * scale^l.
+    const PyramidLevel grid(left_grey.size(), std::pow(opt_.scale_factor, kl.octave));
+    const double s = opt_.level_pixel_centres ? grid.scale_x() : std::pow(opt_.scale_factor, kl.octave);
+    auto to_level_x = [&](double u) { return opt_.level_pixel_centres ? grid.ToLevelX(u) : u / s; };
+    auto to_level_y = [&](double v) { return opt_.level_pixel_centres ? grid.ToLevelY(v) : v / s; };
+    auto to_image_x = [&](double x) { return opt_.level_pixel_centres ? grid.ToImageX(x) : x * s; };
     const cv::Mat& L = level(pyr_l, left_grey, kl.octave);
     const cv::Mat& R = level(pyr_r, right_grey, kl.octave);
     const int h = opt_.sad_half_window;
-    const int xl = cvRound(kl.pt.x / s), yl = cvRound(kl.pt.y / s);
+    const int xl = cvRound(to_level_x(kl.pt.x)), yl = cvRound(to_level_y(kl.pt.y));
     if (yl - h < 0 || yl + h >= L.rows || xl - h < 0 || xl + h >= L.cols) continue;
     int lo = 0, hi = 0;  // candidate right columns at the level, inclusive
     if (by_descriptor) {
-      const int xr0 = cvRound(right_kps[best_j].pt.x / s);
+      const int xr0 = cvRound(to_level_x(right_kps[best_j].pt.x));
       lo = xr0 - opt_.sad_search_px;
       hi = xr0 + opt_.sad_search_px;
     } else {
@@ -143,7 +149,7 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
     const double denom = 2 * (c0 + c2 - 2 * c1);
     const double delta = denom > 0 ? (c0 - c2) / denom : 0.0;
     if (std::abs(delta) > 1) continue;
-    const double u_r = (lo - 1 + arg + delta) * s;
+    const double u_r = to_image_x(lo - 1 + arg + delta);
     const double disparity = kl.pt.x - u_r;
     if (disparity <= 0 || disparity > max_disp) continue;
     best_sad[i] = c1;

@@ -24,6 +24,7 @@ struct StereoMatcherOptions {
   double sad_outlier_factor = 2.1;  // matches whose SAD exceeds this times the median are dropped
   double sad_uniqueness = 0.7;   // a row search without a descriptor match needs its SAD minimum
                                  // below this times the best SAD more than 2 px away
+  bool level_pixel_centres = false;  // the extractor's mapping of level pixels (orb.level_pixel_centres)
 };
 
 struct StereoMatch {

@@ -47,6 +47,7 @@ void ReadOrb(YamlMapReader* m, OrbExtractorOptions* o) {
   m->Integer("fast_threshold", &o->fast_threshold, kGrey);
   m->Integer("fast_threshold_min", &o->fast_threshold_min, kGrey);
   m->Integer("cell_px", &o->cell_px, NumberRange::Closed(8, 4096));
+  m->Bool("level_pixel_centres", &o->level_pixel_centres);
   m->RejectUnknownKeys();
   if (o->fast_threshold_min > o->fast_threshold) {
     FailAtEither(m, "fast_threshold_min", m, "fast_threshold",
@@ -219,6 +220,7 @@ SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::st
   }
   YamlMapReader stereo = top.Map("stereo");
   ReadStereo(&stereo, &s.stereo);
+  s.stereo.level_pixel_centres = s.orb.level_pixel_centres;  // one pyramid, one mapping
   YamlMapReader tracking = top.Map("tracking");
   ReadTracking(&tracking, &s.tracking);
   YamlMapReader mapping = top.Map("mapping");
@@ -258,6 +260,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitInt(out, "fast_threshold", s.orb.fast_threshold);
   EmitInt(out, "fast_threshold_min", s.orb.fast_threshold_min);
   EmitInt(out, "cell_px", s.orb.cell_px);
+  EmitBool(out, "level_pixel_centres", s.orb.level_pixel_centres);
   out << YAML::EndMap;
 
   out << YAML::Key << "stereo" << YAML::Value << YAML::BeginMap;
