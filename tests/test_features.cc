@@ -106,9 +106,8 @@ TEST(Features, StereoDepthMatchesRenderedDepth) {
     orb.Extract(p.right, cv::Mat(), &kr, &dr);
     // Each keypoint lies on a pixel of its level, by the mapping chosen.
     for (const cv::KeyPoint& k : kl) {
-      const double s = orb.ScaleOfLevel(k.octave);
-      const slam::PyramidLevel level(p.left.size(), s);
-      const double x = centres ? level.ToLevelX(k.pt.x) : k.pt.x / s, y = centres ? level.ToLevelY(k.pt.y) : k.pt.y / s;
+      const slam::PyramidLevel level(p.left.size(), orb.ScaleOfLevel(k.octave), centres);
+      const double x = level.ToLevelX(k.pt.x), y = level.ToLevelY(k.pt.y);
       ASSERT_NEAR(x, std::round(x), 1e-3) << "octave " << k.octave;
       ASSERT_NEAR(y, std::round(y), 1e-3) << "octave " << k.octave;
     }
@@ -143,8 +142,8 @@ TEST(Features, StereoDepthMatchesRenderedDepth) {
     const double median = rel[rel.size() / 2], p90 = rel[rel.size() * 9 / 10];
     std::printf("%s view (%g, %g, %g deg): %zu left features (%d on depth edges, not scored), %d nearer than "
                 "%.2f m, %zu of those with stereo depth, relative depth error median %.2f%% p90 %.2f%%\n",
-                centres ? "level pixel centres" : "x * scale^l", view[0], view[1], view[2], kl.size(), on_edges, in_range, max_depth, rel.size(), 100 * median,
-                100 * p90);
+                centres ? "level pixel centres" : "x * scale^l", view[0], view[1], view[2], kl.size(), on_edges,
+                in_range, max_depth, rel.size(), 100 * median, 100 * p90);
     // At least half of the features within the depth range get a depth.
     EXPECT_GT(rel.size(), in_range / 2);
     EXPECT_LT(median, 0.02);
@@ -152,7 +151,6 @@ TEST(Features, StereoDepthMatchesRenderedDepth) {
   }
 }
 
-}  // namespace
 // A pixel of pyramid level l lies at (x + 0.5) * cols / level_cols - 0.5 in the image, which is
 // where cv::resize samples it: a smooth blob resized to each level and found there by its
 // centroid maps back onto its image position. x * 1.2^l (the mapping before) misses by up to
@@ -192,5 +190,7 @@ TEST(Features, PyramidLevelMapsLevelPixelsOntoTheImage) {
     }
   }
 }
+
+}  // namespace
 
 }  // namespace viqu

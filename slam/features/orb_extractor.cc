@@ -123,9 +123,11 @@ void OrbExtractor::Extract(const cv::Mat& grey, const cv::Mat& mask, std::vector
   CV_Assert(grey.type() == CV_8UC1);
   keypoints->clear();
   cv::Mat level_img = grey, level_mask = mask;
+  std::vector<PyramidLevel> levels;
   for (int l = 0; l < opt_.num_levels; ++l) {
+    levels.emplace_back(grey.size(), scales_[l], opt_.level_pixel_centres);
     if (l > 0) {
-      const cv::Size size = PyramidLevel(grey.size(), scales_[l]).size();
+      const cv::Size size = levels.back().size();
       cv::resize(grey, level_img, size, 0, 0, cv::INTER_LINEAR);
       if (!mask.empty()) cv::resize(mask, level_mask, size, 0, 0, cv::INTER_NEAREST);
     }
@@ -147,8 +149,8 @@ void OrbExtractor::Extract(const cv::Mat& grey, const cv::Mat& mask, std::vector
   for (cv::KeyPoint& k : *keypoints) {
     if (k.octave <= 0) continue;
     const double s = scales_[static_cast<size_t>(k.octave)];
-    const PyramidLevel level(grey.size(), s);
-    k.pt = level.ToImage(cv::Point2f(static_cast<float>(std::round(k.pt.x / s)), static_cast<float>(std::round(k.pt.y / s))));
+    k.pt = levels[static_cast<size_t>(k.octave)].ToImage(
+        cv::Point2f(static_cast<float>(std::round(k.pt.x / s)), static_cast<float>(std::round(k.pt.y / s))));
   }
 }
 

@@ -111,25 +111,20 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
 
     // SAD along the row at the left feature's level: around the descriptor match, or, without
     // one (the right image has no keypoint at this corner), over the whole disparity range.
-    // The level's own pixel grid: with level_pixel_centres the keypoint sits where its level pixel
-    // lies in the image (pyramid_level.h), without it at x * scale^l.
-    const PyramidLevel grid(left_grey.size(), std::pow(opt_.scale_factor, kl.octave));
-    const double s = opt_.level_pixel_centres ? grid.scale_x() : std::pow(opt_.scale_factor, kl.octave);
-    auto to_level_x = [&](double u) { return opt_.level_pixel_centres ? grid.ToLevelX(u) : u / s; };
-    auto to_level_y = [&](double v) { return opt_.level_pixel_centres ? grid.ToLevelY(v) : v / s; };
-    auto to_image_x = [&](double x) { return opt_.level_pixel_centres ? grid.ToImageX(x) : x * s; };
+    // The level's pixel grid, mapped to the image as the extractor maps its keypoints.
+    const PyramidLevel grid(left_grey.size(), std::pow(opt_.scale_factor, kl.octave), opt_.level_pixel_centres);
     const cv::Mat& L = level(pyr_l, left_grey, kl.octave);
     const cv::Mat& R = level(pyr_r, right_grey, kl.octave);
     const int h = opt_.sad_half_window;
-    const int xl = cvRound(to_level_x(kl.pt.x)), yl = cvRound(to_level_y(kl.pt.y));
+    const int xl = cvRound(grid.ToLevelX(kl.pt.x)), yl = cvRound(grid.ToLevelY(kl.pt.y));
     if (yl - h < 0 || yl + h >= L.rows || xl - h < 0 || xl + h >= L.cols) continue;
     int lo = 0, hi = 0;  // candidate right columns at the level, inclusive
     if (by_descriptor) {
-      const int xr0 = cvRound(to_level_x(right_kps[best_j].pt.x));
+      const int xr0 = cvRound(grid.ToLevelX(right_kps[best_j].pt.x));
       lo = xr0 - opt_.sad_search_px;
       hi = xr0 + opt_.sad_search_px;
     } else {
-      lo = xl - static_cast<int>(std::floor(max_disp / s));
+      lo = xl - static_cast<int>(std::floor(max_disp / grid.scale_x()));
       hi = xl - 1;
     }
     lo = std::max(lo, h + 1);
@@ -149,7 +144,7 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
     const double denom = 2 * (c0 + c2 - 2 * c1);
     const double delta = denom > 0 ? (c0 - c2) / denom : 0.0;
     if (std::abs(delta) > 1) continue;
-    const double u_r = to_image_x(lo - 1 + arg + delta);
+    const double u_r = grid.ToImageX(lo - 1 + arg + delta);
     const double disparity = kl.pt.x - u_r;
     if (disparity <= 0 || disparity > max_disp) continue;
     best_sad[i] = c1;
