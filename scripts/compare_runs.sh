@@ -7,7 +7,7 @@ set -euo pipefail
 a=$1 b=$2
 status=0
 strip_metrics() { grep -v -E '"(render_ms_|wall_time_s|real_time_factor|track_ms_|local_ba_ms_|dynamic_ms_|update_ms_mean)' "$1"; }
-strip_tracking() { cut -d, -f1-6,8 "$1"; }
+strip_tracking() { cut -d, -f1-6,8,10- "$1"; }  # all but track_ms and dynamic_ms
 while IFS= read -r -d '' f; do
   rel=${f#"$a"/}
   case "$rel" in

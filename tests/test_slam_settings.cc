@@ -100,6 +100,7 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(ta.keyframe_new_points, tb.keyframe_new_points);
   EXPECT_EQ(ta.keyframe_min_inliers, tb.keyframe_min_inliers);
   EXPECT_EQ(ta.reinitialise_after_lost, tb.reinitialise_after_lost);
+  EXPECT_EQ(ta.lost_carry_min_inliers, tb.lost_carry_min_inliers);
   EXPECT_EQ(ta.weak_inliers_factor, tb.weak_inliers_factor);
   EXPECT_EQ(ta.relocalised_frames, tb.relocalised_frames);
   EXPECT_EQ(ta.relocalised_min_inliers, tb.relocalised_min_inliers);
@@ -174,7 +175,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 7 + 10 + 29 + 9 + 8 + 3 + 23 + 26;
+constexpr int kLeafKeys = 4 + 7 + 10 + 30 + 9 + 8 + 3 + 23 + 26;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();

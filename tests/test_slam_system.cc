@@ -107,10 +107,11 @@ Eigen::Isometry3d TruePose(int k) {  // camera in world: forward, sideways and a
   return T_w_c;
 }
 
-StereoFrame MakeFrame(int k, int variant = 0) {
+// Frame k (its time) seen from the camera pose T_w_c.
+StereoFrame MakeFrameAt(int k, const Eigen::Isometry3d& T_w_c, int variant = 0) {
   StereoFrame f;
   f.t_ns = 1'000'000'000 + k * 50'000'000LL;
-  const Eigen::Isometry3d T_c_w = TruePose(k).inverse();
+  const Eigen::Isometry3d T_c_w = T_w_c.inverse();
   Eigen::Isometry3d T_right_left = Eigen::Isometry3d::Identity();
   T_right_left.translation() = Eigen::Vector3d(-kBaseline, 0, 0);
   f.left_rgb = Render(T_c_w, variant);
@@ -119,6 +120,8 @@ StereoFrame MakeFrame(int k, int variant = 0) {
   f.baseline_m = kBaseline;
   return f;
 }
+
+StereoFrame MakeFrame(int k, int variant = 0) { return MakeFrameAt(k, TruePose(k), variant); }
 
 // SLAM settings with the adaptive dynamic-object stage on.
 slam::SlamSettings AdaptiveDynamicSettings() {
@@ -356,6 +359,76 @@ TEST(SlamSystem, ForcedLongLossInUnmappedViewStartsANewAnchoredSegment) {
     }
   }
   EXPECT_EQ(fixed, 2);
+}
+
+// The known path with a trot's wobble: the camera yaws and pitches by +-1.5 deg and bobs by 5 mm at
+// 3 Hz (frames at 20 Hz), so that the last frame's velocity is a poor guess of the next.
+Eigen::Isometry3d WobblyPose(int k) {
+  const double phase = 2 * M_PI * 3.0 * k * 0.05 + 0.4;
+  const double a = 1.5 * M_PI / 180;
+  Eigen::Isometry3d T = TruePose(k);
+  T.linear() = T.linear() * (Eigen::AngleAxisd(a * std::sin(phase), Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(a * std::cos(phase), Eigen::Vector3d::UnitX())).toRotationMatrix();
+  T.translation().y() += 0.005 * std::sin(phase);
+  return T;
+}
+
+// Lost frames that still see the last frame's stereo points are carried by them (frame to
+// frame), not by the constant velocity, and a frame carried as well as a tracked one starts the
+// new segment at once. The camera wobbles along the known path; from frame 10 it sees the same
+// geometry with other textures (a place never mapped), so nothing matches the map: frame 10 has
+// nothing to go by but the velocity, frame 11 is carried by frame 10's points (hundreds of
+// inliers), and frame 12 starts a new segment at its carried pose, in which tracking goes on.
+// With the carry off (lost_carry_min_inliers 0) frames 10-29 extrapolate the velocity of frames
+// 8-9 through the wobble, and the 20th lost frame, 30, starts the segment where that left it.
+TEST(SlamSystem, LostFramesAreCarriedByTheLastFramesStereoPoints) {
+  // Error of the pose against the truth, both relative to frame 0 (where the map starts).
+  auto error_m = [](const slam::TrackResult& r, int k) {
+    return (r.T_w_c.translation() - (WobblyPose(0).inverse() * WobblyPose(k)).translation()).norm();
+  };
+  struct Outcome {
+    int lost = 0, segment_frame = -1, carry_inliers_frame_11 = 0;
+    double segment_start_m = 0, worst_m = 0;  // from frame 10 on
+  };
+  auto run = [&](int carry_min_inliers) {
+    slam::SlamSettings settings;
+    settings.tracking.lost_carry_min_inliers = carry_min_inliers;
+    slam::SlamSystem system(settings);
+    Outcome o;
+    for (int k = 0; k < 45; ++k) {
+      const slam::TrackResult r = system.Track(MakeFrameAt(k, WobblyPose(k), k < 10 ? 0 : 1));
+      if (k < 10) {
+        EXPECT_NE(r.status, slam::TrackStatus::kLost) << k;
+        continue;
+      }
+      if (k == 11) o.carry_inliers_frame_11 = r.carry_inliers;
+      o.lost += r.status == slam::TrackStatus::kLost ? 1 : 0;
+      if (r.status == slam::TrackStatus::kInitialised) {
+        EXPECT_EQ(o.segment_frame, -1) << "a second new segment at frame " << k;
+        o.segment_frame = k;
+        o.segment_start_m = error_m(r, k);
+      } else if (o.segment_frame >= 0) {
+        EXPECT_EQ(r.status, slam::TrackStatus::kTracking) << k;
+      }
+      o.worst_m = std::max(o.worst_m, error_m(r, k));
+    }
+    system.Finish();
+    return o;
+  };
+  const Outcome carried = run(15), velocity = run(0);
+  for (const auto& [name, o] : {std::pair{"carried frame to frame", carried}, std::pair{"constant velocity", velocity}}) {
+    std::printf("%s: %d lost frames, new segment at frame %d, %.1f mm off; worst error from frame 10 %.1f mm; "
+                "frame 11 carried by %d inliers\n",
+                name, o.lost, o.segment_frame, o.segment_start_m * 1e3, o.worst_m * 1e3, o.carry_inliers_frame_11);
+  }
+  EXPECT_EQ(carried.lost, 2);
+  EXPECT_EQ(carried.segment_frame, 12);
+  EXPECT_GE(carried.carry_inliers_frame_11, slam::SlamSettings{}.tracking.min_inliers);
+  EXPECT_EQ(velocity.lost, 20);
+  EXPECT_EQ(velocity.segment_frame, 30);
+  EXPECT_EQ(velocity.carry_inliers_frame_11, 0);  // off: nothing tried
+  EXPECT_LT(carried.worst_m, 0.010);  // measured 5.0 mm
+  EXPECT_GT(velocity.worst_m, 4 * carried.worst_m);  // measured 55.8 mm
 }
 
 // Relocalisation's RANSAC does not depend on OpenCV's global generator: the same frames give

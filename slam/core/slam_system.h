@@ -45,6 +45,8 @@ struct TrackResult {
                                  // frame's pose after it for objects judged dynamic on this frame
   int stereo_points = 0;         // features with depth
   int inliers = 0;               // map-point matches kept by pose optimisation
+  int carry_inliers = 0;         // a lost frame carried without an external prior: inliers among the last frame's
+                                 // stereo points (its pose came from them when >= tracking.lost_carry_min_inliers)
   double track_ms = 0;           // wall time of Track() (ms), the dynamic stage included
   double dynamic_ms = 0;         // of that, the dynamic-object stage (ms)
   double excluded_share = 0;     // share of inliers on movable objects (judged with a pose without them above

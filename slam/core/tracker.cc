@@ -280,11 +280,25 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     relocalised = Relocalise();
     if (relocalised) last_reloc_frame_ = frame_index_;
   }
+  // A new segment after reinitialise_after_lost lost frames, or at once when the last lost frame
+  // was carried by as many of its predecessor's points as a tracked frame needs (the view has
+  // texture, only not the map's): waiting would chain frame-to-frame poses for nothing.
+  const bool carried_well = last_carry_inliers_ >= settings_.tracking.min_inliers;
   const bool reinitialise = initialised_ && lost_ && !relocalised &&
-                            lost_frames_in_row_ >= settings_.tracking.reinitialise_after_lost;
+                            (lost_frames_in_row_ >= settings_.tracking.reinitialise_after_lost || carried_well);
+  last_carry_inliers_ = 0;
   if (!initialised_ || reinitialise) {
-    // A new map segment continues from the last estimate (dead reckoning through the outage).
+    // A new map segment continues from the last estimate: the frame carried from the last one's
+    // points when it can be, else dead reckoning through the outage.
     cur_.T_c_w = initialised_ ? (have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w) : Eigen::Isometry3d::Identity();
+    if (reinitialise && !r.external_prior) {
+      Eigen::Isometry3d carried;
+      if (CarryFromLastFrame(cur_.T_c_w, &carried, &r.carry_inliers)) {
+        velocity_ = carried * last_.T_c_w.inverse();
+        have_velocity_ = true;
+        cur_.T_c_w = carried;
+      }
+    }
     if (Initialise()) {
       r.status = TrackStatus::kInitialised;
       r.keyframe = true;
@@ -293,6 +307,7 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     } else {
       r.status = TrackStatus::kLost;
       if (initialised_) ++lost_frames_in_row_;
+      last_carry_inliers_ = r.carry_inliers;  // too few stereo points for a segment: the next frame tries again
     }
     r.T_w_c = cur_.T_c_w.inverse();
     last_ = cur_;
@@ -342,9 +357,17 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     r.status = TrackStatus::kLost;
     lost_ = true;
     ++lost_frames_in_row_;
-    // No visual pose: carry the motion-model prediction (or the external motion prior) so that
-    // the trajectory has no gap.
-    cur_.T_c_w = have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w;
+    // No pose from the map: carry the external motion prior, or else the last frame's own stereo
+    // points (frame to frame) when enough of them hold, or else the constant velocity, so that the
+    // trajectory has no gap.
+    const Eigen::Isometry3d guess = have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w;
+    Eigen::Isometry3d carried = guess;
+    if (!r.external_prior && CarryFromLastFrame(guess, &carried, &r.carry_inliers)) {
+      velocity_ = carried * last_.T_c_w.inverse();
+      have_velocity_ = true;
+      last_carry_inliers_ = r.carry_inliers;
+    }
+    cur_.T_c_w = carried;
     DropTemporaryPoints(&cur_);
     cur_.ClearMatches();
   }
@@ -485,6 +508,36 @@ bool Tracker::TrackWithMotionModel(const Eigen::Isometry3d& predicted) {
   if (best < 0) return false;
   cur_ = best_frame;
   return best >= settings_.tracking.min_inliers_motion;
+}
+
+bool Tracker::CarryFromLastFrame(const Eigen::Isometry3d& guess, Eigen::Isometry3d* pose, int* inliers) {
+  *inliers = 0;
+  const int need = settings_.tracking.lost_carry_min_inliers;
+  if (need <= 0 || !last_.features) return false;
+  // The last frame's stereo features as points where its (tracked or carried) pose puts them.
+  // Frames tracked from the map have theirs already; a lost frame has none.
+  if (temporary_.empty()) AddTemporaryPointsToLastFrame();
+  const double radius = search_px_;
+  const std::pair<Eigen::Isometry3d, double> attempts[] = {{guess, radius}, {guess, 3 * radius}, {last_.T_c_w, 5 * radius}};
+  int best = -1;
+  Eigen::Isometry3d best_pose = guess;
+  for (const auto& [start, r] : attempts) {
+    cur_.T_c_w = start;
+    cur_.ClearMatches();
+    if (matcher_->SearchByProjection(last_, r, &cur_) < need) continue;
+    const int n = OptimizePose(cam_, pose_opt_, &cur_);
+    if (n > best) {
+      best = n;
+      best_pose = cur_.T_c_w;
+    }
+    if (best >= settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers) break;
+  }
+  cur_.ClearMatches();
+  cur_.T_c_w = guess;
+  *inliers = std::max(best, 0);
+  if (best < need) return false;
+  *pose = best_pose;
+  return true;
 }
 
 void Tracker::Pinned(std::vector<const KeyFrame*>* keyframes, std::vector<const MapPoint*>* points) const {

@@ -102,6 +102,10 @@ class Tracker {
   // percentile of the prior's miss in pixels (prior_miss_px_).
   void MeasurePriorMiss(const Eigen::Isometry3d& predicted_T_c_w);
   bool TrackReferenceKeyFrame();
+  // A lost frame's pose from the last frame's stereo points alone (its map points and temporary
+  // ones), searched from `guess` as the motion model does: true, with the pose, when at least
+  // tracking.lost_carry_min_inliers are inliers; `inliers`: the best count found.
+  bool CarryFromLastFrame(const Eigen::Isometry3d& guess, Eigen::Isometry3d* pose, int* inliers);
   int TrackLocalMap();
   // Appends to the local keyframes up to tracking.spatial_keyframes others near the predicted
   // camera (centre within spatial_radius_m, optical axis within spatial_max_angle_deg), nearest first.
@@ -125,6 +129,7 @@ class Tracker {
   bool initialised_ = false;
   bool lost_ = false;
   int lost_frames_in_row_ = 0;
+  int last_carry_inliers_ = 0;  // inliers of the last frame's carry from its predecessor (0: not carried)
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  // T_cur_last of the last step
   Eigen::Isometry3d last_good_T_c_w_ = Eigen::Isometry3d::Identity();  // last pose tracked by vision
   bool have_velocity_ = false;

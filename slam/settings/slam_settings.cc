@@ -95,6 +95,7 @@ void ReadTracking(YamlMapReader* m, TrackingSettings* t) {
   m->Integer("keyframe_new_points", &t->keyframe_new_points, kCount0);
   m->Integer("keyframe_min_inliers", &t->keyframe_min_inliers, kCount0);
   m->Integer("reinitialise_after_lost", &t->reinitialise_after_lost, kCount1);
+  m->Integer("lost_carry_min_inliers", &t->lost_carry_min_inliers, kCount0);
   m->Number("weak_inliers_factor", &t->weak_inliers_factor, NumberRange::Closed(0, 100));
   m->Integer("relocalised_frames", &t->relocalised_frames, kCount0);
   m->Integer("relocalised_min_inliers", &t->relocalised_min_inliers, kCount3);
@@ -301,6 +302,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitInt(out, "keyframe_new_points", t.keyframe_new_points);
   EmitInt(out, "keyframe_min_inliers", t.keyframe_min_inliers);
   EmitInt(out, "reinitialise_after_lost", t.reinitialise_after_lost);
+  EmitInt(out, "lost_carry_min_inliers", t.lost_carry_min_inliers);
   EmitNumber(out, "weak_inliers_factor", t.weak_inliers_factor);
   EmitInt(out, "relocalised_frames", t.relocalised_frames);
   EmitInt(out, "relocalised_min_inliers", t.relocalised_min_inliers);

@@ -32,6 +32,8 @@ struct TrackingSettings {
   int keyframe_new_points = 100;     // a new keyframe makes map points of at least its this many nearest stereo features (count)
   int keyframe_min_inliers = 50;     // a frame tracked with fewer inliers never becomes a keyframe (count)
   int reinitialise_after_lost = 20;  // lost frames in a row after which a frame that does not relocalise starts a new segment (frames)
+  int lost_carry_min_inliers = 15;   // a lost frame (no external prior) takes its pose from the last frame's stereo points when
+                                     // this many are inliers, not from the constant velocity (count; 0: off)
   double weak_inliers_factor = 3;    // fewer inliers than this times min_inliers: search again with windows 3x as wide (ratio)
   int relocalised_frames = 20;       // frames after a relocalisation that need relocalised_min_inliers and make no keyframe (frames)
   int relocalised_min_inliers = 50;  // inliers a frame needs within relocalised_frames after a relocalisation (count)
