@@ -118,15 +118,18 @@ TEST(LegOdometryScenario, BlankWallIsCarriedByTheFilter) {
               "alone %.4f m\n",
               ate_full, ate_visual, ate_full / ate_visual, lost_full, visual.metrics["tracking"]["lost_frames"].as<int>(),
               frames, full.metrics["lo"]["ate"]["rmse_m"].as<double>());
-  // The close-up starves vision: it loses track in both modes (measured 44 and 64 frames).
+  // The close-up starves vision: it loses track in both modes (measured 44 and 64 frames; 44 and
+  // 46 since session 25).
   EXPECT_GE(lost_full, 10);
   // A pose for every frame in full, the lost ones carried by the filter.
   EXPECT_EQ(Lines(full.dir / "trajectory_est.txt"), frames);
-  // Measured 25.1 mm (full) and 753.5 mm (visual, which dead-reckons on its last velocity).
-  // full is not better than the filter alone here (18.5 mm): vision's last poses on the floor
+  // Measured 25.1 mm (full) and 753.5 mm (visual, which dead-reckoned on its last velocity);
+  // 26.6 mm and 280.2 mm (0.095x) since session 25, where visual carries its lost frames by the
+  // last frame's points while the wall still shows some, and starts its new segment sooner.
+  // full is not better than the filter alone here (24.3 mm): vision's last poses on the floor
   // strip tilt by 3-5 deg, the filter takes their orientation, and the map resumes tilted (README).
   EXPECT_LT(ate_full, 0.05);
-  EXPECT_LT(ate_full, 0.1 * ate_visual);
+  EXPECT_LT(ate_full, 0.2 * ate_visual);
 }
 
 // The trunk's true xy at the first and the last encoder sample, from lo.csv (columns true_x, true_y).
