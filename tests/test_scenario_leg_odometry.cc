@@ -69,7 +69,8 @@ TEST(LegOdometryScenario, CameraDropoutIsCarriedByTheFilter) {
   EXPECT_EQ(Lines(full.dir / "trajectory_est.txt"), frames);
   EXPECT_EQ(Lines(full.dir / "trajectory_lo.txt"), frames);
   EXPECT_EQ(full.metrics["tracking"]["lost_frames"].as<int>(), 100);  // 14 s to 19 s at 20 Hz, no more
-  // Measured 3.3 mm (full), 131 mm (visual) and 2.2 mm without the dropout (1.49x; the issue asks
+  // Measured 3.3 mm (full), 131 mm (visual; 144.6 mm in session 25, carry on or off: black frames
+  // carry nothing) and 2.2 mm without the dropout (1.49x; the issue asks
   // <= 2x; 6.2x while the touch-down inflation also down-weighted the vertical and the height
   // sank 25 mm in the outage's corner turn).
   EXPECT_LT(ate_full, 0.007);
@@ -124,12 +125,12 @@ TEST(LegOdometryScenario, BlankWallIsCarriedByTheFilter) {
   // A pose for every frame in full, the lost ones carried by the filter.
   EXPECT_EQ(Lines(full.dir / "trajectory_est.txt"), frames);
   // Measured 25.1 mm (full) and 753.5 mm (visual, which dead-reckoned on its last velocity);
-  // 26.6 mm and 280.2 mm (0.095x) since session 25, where visual carries its lost frames by the
-  // last frame's points while the wall still shows some, and starts its new segment sooner.
+  // 26.6 mm and 339.9 mm (0.078x) since session 25, where visual carries its lost frames by the
+  // last frame's points while the wall still shows some (46 lost frames).
   // full is not better than the filter alone here (24.3 mm): vision's last poses on the floor
   // strip tilt by 3-5 deg, the filter takes their orientation, and the map resumes tilted (README).
   EXPECT_LT(ate_full, 0.05);
-  EXPECT_LT(ate_full, 0.2 * ate_visual);
+  EXPECT_LT(ate_full, 0.16 * ate_visual);
 }
 
 // The trunk's true xy at the first and the last encoder sample, from lo.csv (columns true_x, true_y).

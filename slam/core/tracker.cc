@@ -510,7 +510,7 @@ bool Tracker::TrackWithMotionModel(const Eigen::Isometry3d& predicted) {
   return best >= settings_.tracking.min_inliers_motion;
 }
 
-bool Tracker::CarryFromLastFrame(const Eigen::Isometry3d& guess, Eigen::Isometry3d* pose, int* inliers) {
+bool Tracker::CarryFromLastFrame(const Eigen::Isometry3d guess, Eigen::Isometry3d* pose, int* inliers) {
   *inliers = 0;
   const int need = settings_.tracking.lost_carry_min_inliers;
   if (need <= 0 || !last_.features) return false;

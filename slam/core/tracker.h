@@ -104,8 +104,9 @@ class Tracker {
   bool TrackReferenceKeyFrame();
   // A lost frame's pose from the last frame's stereo points alone (its map points and temporary
   // ones), searched from `guess` as the motion model does: true, with the pose, when at least
-  // tracking.lost_carry_min_inliers are inliers; `inliers`: the best count found.
-  bool CarryFromLastFrame(const Eigen::Isometry3d& guess, Eigen::Isometry3d* pose, int* inliers);
+  // tracking.lost_carry_min_inliers are inliers; `inliers`: the best count found. `guess` by value:
+  // callers pass cur_.T_c_w, which the search moves (and puts back to the guess).
+  bool CarryFromLastFrame(Eigen::Isometry3d guess, Eigen::Isometry3d* pose, int* inliers);
   int TrackLocalMap();
   // Appends to the local keyframes up to tracking.spatial_keyframes others near the predicted
   // camera (centre within spatial_radius_m, optical axis within spatial_max_angle_deg), nearest first.
