@@ -276,7 +276,8 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   // A lost tracker tries to relocalise first, however long the loss: a view of mapped ground ends
   // it in the map, where a new segment would carry the dead-reckoned pose's error from then on.
   bool relocalised = false;
-  if (initialised_ && lost_) {
+  const bool was_lost = initialised_ && lost_;
+  if (was_lost) {
     relocalised = Relocalise();
     if (relocalised) last_reloc_frame_ = frame_index_;
   }
@@ -307,7 +308,8 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     } else {
       r.status = TrackStatus::kLost;
       if (initialised_) ++lost_frames_in_row_;
-      last_carry_inliers_ = r.carry_inliers;  // too few stereo points for a segment: the next frame tries again
+      // Too few stereo points for a segment: the next frame tries again (at once if this carry held).
+      if (r.carry_inliers >= settings_.tracking.lost_carry_min_inliers) last_carry_inliers_ = r.carry_inliers;
     }
     r.T_w_c = cur_.T_c_w.inverse();
     last_ = cur_;
@@ -365,7 +367,9 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     if (!r.external_prior && CarryFromLastFrame(guess, &carried, &r.carry_inliers)) {
       velocity_ = carried * last_.T_c_w.inverse();
       have_velocity_ = true;
-      last_carry_inliers_ = r.carry_inliers;
+      // Only a frame that has also failed to relocalise counts towards a new segment: the first
+      // lost frame after a tracked one is carried by points the map may still see.
+      if (was_lost) last_carry_inliers_ = r.carry_inliers;
     }
     cur_.T_c_w = carried;
     DropTemporaryPoints(&cur_);
