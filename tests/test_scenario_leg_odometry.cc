@@ -7,6 +7,8 @@
 //  - slippery_patch: the robot walks onto ice and treads in place; the slip gate must flag the
 //    stance feet that slide, and hardly any that do not.
 //  - blank_wall: a plain board fills the view; `full` carries the pose where vision loses it.
+//  - ice_patches: three strips of ice across the path; short skids at touch-down, the slip
+//    gate's hard case (its targets are missed there: the bounds hold today's figures).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -160,6 +162,40 @@ TEST(LegOdometryScenario, ClosedLoopOnTheEstimateClosesTheSquare) {
               r.metrics["ate"]["rmse_m"].as<double>());
   EXPECT_LE(gap, 0.15);  // the issue's target; by ground truth the square ends within it too
   EXPECT_GE(r.metrics["path_length_m"].as<double>(), 7.5);  // the whole square was walked
+}
+
+// ice_patches is the slip suite's case where the targets are missed (README, "Leg odometry +
+// IMU"): the skids on its short ice strips are 20-40 ms at 0.05-0.15 m/s and look like the
+// landing itself through the encoders, and its leg-odometry drift is not the ice's (3.28% on the
+// same walk without ice). The bounds hold today's figures with about 2x margin on what each
+// measures, so that a regression in the gate, the filter or the fusion shows here.
+TEST(LegOdometryScenario, IcePatchesSkidsAreFlaggedAndFusionStaysBelowVision) {
+  const RunOutput full = RunScenario("ice_patches.yaml", "ice_full", {});
+  const RunOutput visual = RunScenario("ice_patches.yaml", "ice_visual", {"slam.mode=visual"});
+  const RunOutput ungated =
+      RunScenario("ice_patches.yaml", "ice_ungated", {"slam.lo.slip_gate_chi2=1e9", "slam.lo.slip_speed_mps=1e9"});
+  const double ate_full = full.metrics["ate"]["rmse_m"].as<double>();
+  const double ate_visual = visual.metrics["ate"]["rmse_m"].as<double>();
+  const YAML::Node& slip = full.metrics["slip"];
+  const double drift = full.metrics["lo"]["drift_pct_path"].as<double>();
+  const double drift_ungated = ungated.metrics["lo"]["drift_pct_path"].as<double>();
+  std::printf("ice_patches: ATE full %.4f m, visual %.4f m (%.3fx); slip precision %.3f recall %.3f (%d true events, "
+              "%d detected); LO drift %.2f%%, gates off %.2f%% (%.3fx)\n",
+              ate_full, ate_visual, ate_full / ate_visual, slip["precision"].as<double>(), slip["recall"].as<double>(),
+              slip["truth_events"].as<int>(), slip["events"].as<int>(), drift, drift_ungated, drift / drift_ungated);
+  // Measured (session 26): 88 true events, 306 detected; precision 0.23, recall 0.55.
+  EXPECT_GE(slip["truth_events"].as<int>(), 44);
+  EXPECT_GE(slip["precision"].as<double>(), 0.12);
+  EXPECT_GE(slip["recall"].as<double>(), 0.3);
+  // With both gates off nothing is flagged, and the filter drifts no less: measured 1.78% gated
+  // against 1.90% (0.94x; the issue's target is 0.6x).
+  EXPECT_EQ(ungated.metrics["slip"]["events"].as<int>(), 0);
+  EXPECT_LT(drift, 3.6);
+  EXPECT_LE(drift, 1.05 * drift_ungated);
+  // Measured 2.2 mm (full) against 2.7 mm (visual): 0.81x (target 0.7x), no lost frame in either.
+  EXPECT_LT(ate_full, 0.0045);
+  EXPECT_LE(ate_full, 1.05 * ate_visual);
+  EXPECT_EQ(full.metrics["tracking"]["lost_frames"].as<int>(), 0);
 }
 
 }  // namespace
