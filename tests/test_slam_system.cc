@@ -45,8 +45,14 @@ struct Plane {
 // Camera frame at the start: x right, y down, z forward. Drawn in this order (each nearer
 // than what it covers). Scene 1 is the same geometry with other textures: a place never mapped.
 // Scene 2 has a panel 1.2 x 0.9 m at 1.2 m that fills most of the view (a pushed crate).
+// Scene 3 is scene 1's wall and floor behind scene 0's near panel: of a place never mapped,
+// only the panel is known.
 const std::vector<Plane>& Scene(int variant = 0) {
   const double s = kTexScale;
+  if (variant == 3) {
+    static const std::vector<Plane> mixed = {Scene(0)[0], Scene(1)[1], Scene(0)[2]};
+    return mixed;
+  }
   static const std::vector<Plane> planes[3] = {
       {
           {Texture(1400, 2400, 1), {-2.4, -1.4, 2.5}, {s, 0, 0}, {0, s, 0}},  // far wall filling the view
@@ -440,6 +446,63 @@ TEST(SlamSystem, LostFramesAreCarriedByTheLastFramesStereoPoints) {
   EXPECT_EQ(velocity.carry_inliers_frame_11, 0);  // off: nothing tried
   EXPECT_LT(carried.worst_m, 0.010);  // measured 5.0 mm
   EXPECT_GT(velocity.worst_m, 4 * carried.worst_m);  // measured 55.8 mm
+}
+
+// The first lost frame after a tracked one is carried by the tracked frame's points, and that
+// carry alone does not start a new segment. Keyframes are held off (keyframe_min_frames), so
+// the map is frame 0's. Frame 9 sees the mapped wall and panel over a floor never mapped
+// (scene 3) and tracks the map through them; frame 10 sees nothing mapped (scene 1). Its match
+// with frame 9's temporary stereo points on that floor is not the map: it is lost, and carried
+// by those points. Frame 11 fails to relocalise and is carried in turn; a lost frame carried as
+// well as a tracked one, it starts the new segment on frame 12, not on 11.
+TEST(SlamSystem, TheFirstLostFrameIsCarriedByTheTrackedLastFramesPoints) {
+  auto error_m = [](const slam::TrackResult& r, int k) {
+    return (r.T_w_c.translation() - (WobblyPose(0).inverse() * WobblyPose(k)).translation()).norm();
+  };
+  auto run = [&](int carry_min_inliers) {
+    slam::SlamSettings settings;
+    settings.tracking.lost_carry_min_inliers = carry_min_inliers;
+    settings.tracking.keyframe_min_frames = 100;
+    slam::SlamSystem system(settings);
+    std::vector<slam::TrackResult> out;
+    for (int k = 0; k < 16; ++k) {
+      const int variant = k < 9 ? 0 : (k == 9 ? 3 : 1);
+      out.push_back(system.Track(MakeFrameAt(k, WobblyPose(k), variant)));
+    }
+    system.Finish();
+    return out;
+  };
+  const std::vector<slam::TrackResult> carried = run(15), velocity = run(0);
+  for (int k = 9; k <= 12; ++k) {
+    std::printf("frame %d: carried: status %d, %d map inliers, carried by %d, %.2f mm off; constant velocity: "
+                "status %d, %.2f mm off\n",
+                k, static_cast<int>(carried[k].status), carried[k].inliers, carried[k].carry_inliers,
+                error_m(carried[k], k) * 1e3, static_cast<int>(velocity[k].status), error_m(velocity[k], k) * 1e3);
+  }
+  for (int k = 1; k <= 9; ++k) EXPECT_EQ(carried[k].status, slam::TrackStatus::kTracking) << k;
+  // Frame 10: lost (frame 9's temporary points are not map points), carried from tracked frame 9.
+  EXPECT_EQ(carried[10].status, slam::TrackStatus::kLost);
+  EXPECT_LT(carried[10].inliers, slam::SlamSettings{}.tracking.min_inliers);
+  EXPECT_GE(carried[10].carry_inliers, slam::SlamSettings{}.tracking.min_inliers);
+  // Frame 11: lost and carried, not a new segment (frame 10's carry was from a tracked frame).
+  EXPECT_EQ(carried[11].status, slam::TrackStatus::kLost);
+  EXPECT_GE(carried[11].carry_inliers, slam::SlamSettings{}.tracking.min_inliers);
+  EXPECT_EQ(carried[12].status, slam::TrackStatus::kInitialised);
+  for (int k = 13; k < 16; ++k) EXPECT_EQ(carried[k].status, slam::TrackStatus::kTracking) << k;
+  EXPECT_EQ(velocity[10].status, slam::TrackStatus::kLost);
+  EXPECT_EQ(velocity[10].carry_inliers, 0);  // off: nothing tried
+  // The step from frame 9 to frame 10 against the truth's (rotation, deg): the carry measures it,
+  // the constant velocity repeats the step before it through the wobble.
+  auto step_error_deg = [](const std::vector<slam::TrackResult>& rs) {
+    const Eigen::Isometry3d est = rs[9].T_w_c.inverse() * rs[10].T_w_c;
+    const Eigen::Isometry3d truth = WobblyPose(9).inverse() * WobblyPose(10);
+    return Eigen::AngleAxisd((est.inverse() * truth).rotation()).angle() * 180 / M_PI;
+  };
+  std::printf("step 9 -> 10 rotation error: carried %.3f deg, constant velocity %.3f deg\n", step_error_deg(carried),
+              step_error_deg(velocity));
+  EXPECT_LT(error_m(carried[10], 10), 0.003);  // measured 1.47 mm (frame 9: 1.41)
+  EXPECT_LT(step_error_deg(carried), 0.2);  // measured 0.100 deg
+  EXPECT_GT(step_error_deg(velocity), 5 * step_error_deg(carried));  // measured 1.256 deg
 }
 
 // Relocalisation's RANSAC does not depend on OpenCV's global generator: the same frames give

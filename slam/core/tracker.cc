@@ -630,19 +630,30 @@ int Tracker::TrackLocalMap() {
     if (cur_.points[i] && !cur_.points[i]->bad) ++cur_.points[i]->visible;
   }
   matcher_->SearchLocalPoints(local_points_, settings_.tracking.local_map_search_px, &cur_, true);
-  int inliers = OptimizePose(cam_, pose_opt_, &cur_);
-  if (inliers < settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers) {
+  OptimizePose(cam_, pose_opt_, &cur_);
+  if (MapInliers() < settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers) {
     // Few matches usually mean a poor prediction (a jolt of the trunk): search again from the
     // optimised pose with a window three times as wide.
     cur_.ForgetOutliers();
     matcher_->SearchLocalPoints(local_points_, 3 * settings_.tracking.local_map_search_px, &cur_, false);
-    inliers = OptimizePose(cam_, pose_opt_, &cur_);
+    OptimizePose(cam_, pose_opt_, &cur_);
   }
   for (size_t i = 0; i < cur_.size(); ++i) {
     MapPoint* p = cur_.points[i];
     if (p && !cur_.outlier[i] && !p->bad) ++p->found;
   }
-  return inliers;
+  return MapInliers();
+}
+
+int Tracker::MapInliers() const {
+  // The last frame's temporary points (id -1) help the pose but are not the map: a frame that
+  // matches only them is tracked frame to frame, not in the map.
+  int n = 0;
+  for (size_t i = 0; i < cur_.size(); ++i) {
+    const MapPoint* p = cur_.points[i];
+    if (p && !cur_.outlier[i] && !p->bad && p->id >= 0) ++n;
+  }
+  return n;
 }
 
 bool Tracker::Relocalise() {
