@@ -15,7 +15,7 @@ SlamRun::SlamRun(const slam::SlamSettings& settings, const std::string& out_dir,
       log_(std::make_unique<AtomicOutputFile>(out_dir + "/tracking.csv")),
       dynamic_(out_dir + "/dynamic.csv") {
   log_->Write("t_s,status,features,stereo_points,inliers,keyframe,track_ms,features_dropped,dynamic_ms,"
-              "motion_prior,prior_err_deg,prior_err_mm,search_px,carry_inliers\n");
+              "motion_prior,prior_err_deg,prior_err_mm,search_px,carry_inliers,map_inliers\n");
 }
 
 slam::TrackResult SlamRun::Track(const StereoFrame& frame, const std::vector<ObjectTruth>* truth) {
@@ -38,10 +38,10 @@ slam::TrackResult SlamRun::Track(const StereoFrame& frame, const std::vector<Obj
   }
   if (r.external_prior) ++external_priors_;
   char line[224];
-  std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%d,%.2f,%d,%.2f,%s,%s,%.2f,%d\n", sim::FormatSeconds(r.t_ns).c_str(),
+  std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%d,%.2f,%d,%.2f,%s,%s,%.2f,%d,%d\n", sim::FormatSeconds(r.t_ns).c_str(),
                 slam::TrackStatusName(r.status), r.features, r.stereo_points, r.inliers, r.keyframe ? 1 : 0, r.track_ms,
                 r.features_dropped, r.dynamic_ms, r.external_prior ? "external" : "velocity", miss, r.search_px,
-                r.carry_inliers);
+                r.carry_inliers, r.map_inliers);
   search_px_.push_back(r.search_px);
   log_->Write(line);
   return r;

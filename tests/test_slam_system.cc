@@ -476,13 +476,13 @@ TEST(SlamSystem, TheFirstLostFrameIsCarriedByTheTrackedLastFramesPoints) {
   for (int k = 9; k <= 12; ++k) {
     std::printf("frame %d: carried: status %d, %d map inliers, carried by %d, %.2f mm off; constant velocity: "
                 "status %d, %.2f mm off\n",
-                k, static_cast<int>(carried[k].status), carried[k].inliers, carried[k].carry_inliers,
+                k, static_cast<int>(carried[k].status), carried[k].map_inliers, carried[k].carry_inliers,
                 error_m(carried[k], k) * 1e3, static_cast<int>(velocity[k].status), error_m(velocity[k], k) * 1e3);
   }
   for (int k = 1; k <= 9; ++k) EXPECT_EQ(carried[k].status, slam::TrackStatus::kTracking) << k;
   // Frame 10: lost (frame 9's temporary points are not map points), carried from tracked frame 9.
   EXPECT_EQ(carried[10].status, slam::TrackStatus::kLost);
-  EXPECT_LT(carried[10].inliers, slam::SlamSettings{}.tracking.min_inliers);
+  EXPECT_LT(carried[10].map_inliers, slam::SlamSettings{}.tracking.min_inliers);
   EXPECT_GE(carried[10].carry_inliers, slam::SlamSettings{}.tracking.min_inliers);
   // Frame 11: lost and carried, not a new segment (frame 10's carry was from a tracked frame).
   EXPECT_EQ(carried[11].status, slam::TrackStatus::kLost);

@@ -44,7 +44,8 @@ struct TrackResult {
   int features_dropped = 0;      // of those, removed on dynamic objects before tracking, or from the
                                  // frame's pose after it for objects judged dynamic on this frame
   int stereo_points = 0;         // features with depth
-  int inliers = 0;               // map-point matches kept by pose optimisation
+  int inliers = 0;               // matches kept by pose optimisation (map points and the last frame's temporary ones)
+  int map_inliers = 0;           // of those, map points: a frame with fewer than tracking.min_inliers is lost
   int carry_inliers = 0;         // a lost frame carried without an external prior: inliers among the last frame's
                                  // stereo points (its pose came from them when >= tracking.lost_carry_min_inliers)
   double track_ms = 0;           // wall time of Track() (ms), the dynamic stage included

@@ -326,15 +326,18 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
     if (have_velocity_) ok = TrackWithMotionModel(predicted_T_c_w);
     if (!ok) ok = TrackReferenceKeyFrame();
   }
-  int inliers = 0;
+  int inliers = 0, map_inliers = 0;
   if (ok) {
-    inliers = TrackLocalMap();
+    inliers = TrackLocalMap(&map_inliers);
     const bool recently_relocalised = frame_index_ < last_reloc_frame_ + settings_.tracking.relocalised_frames;
     const int need = recently_relocalised ? std::max(settings_.tracking.min_inliers, settings_.tracking.relocalised_min_inliers)
                                           : settings_.tracking.min_inliers;
-    ok = inliers >= need;
+    // In the map only on map points: matches to the last frame's temporary points alone are
+    // frame to frame (such a frame is lost and carried, not tracked).
+    ok = map_inliers >= need;
   }
   r.inliers = inliers;
+  r.map_inliers = map_inliers;
   if (ok) {
     r.status = lost_ ? TrackStatus::kRelocalised : TrackStatus::kTracking;
     if (r.status == TrackStatus::kTracking) {
@@ -583,7 +586,7 @@ void Tracker::AddSpatialKeyFrames(std::vector<KeyFrame*>* local, std::set<KeyFra
   }
 }
 
-int Tracker::TrackLocalMap() {
+int Tracker::TrackLocalMap(int* map_inliers) {
   // Local keyframes: those that see the frame's points, then their best neighbours.
   KeyFrameMap<int> counter;
   for (size_t i = 0; i < cur_.size(); ++i) {
@@ -630,30 +633,23 @@ int Tracker::TrackLocalMap() {
     if (cur_.points[i] && !cur_.points[i]->bad) ++cur_.points[i]->visible;
   }
   matcher_->SearchLocalPoints(local_points_, settings_.tracking.local_map_search_px, &cur_, true);
-  OptimizePose(cam_, pose_opt_, &cur_);
-  if (MapInliers() < settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers) {
+  int inliers = OptimizePose(cam_, pose_opt_, &cur_);
+  if (inliers < settings_.tracking.weak_inliers_factor * settings_.tracking.min_inliers) {
     // Few matches usually mean a poor prediction (a jolt of the trunk): search again from the
     // optimised pose with a window three times as wide.
     cur_.ForgetOutliers();
     matcher_->SearchLocalPoints(local_points_, 3 * settings_.tracking.local_map_search_px, &cur_, false);
-    OptimizePose(cam_, pose_opt_, &cur_);
+    inliers = OptimizePose(cam_, pose_opt_, &cur_);
   }
+  *map_inliers = 0;
   for (size_t i = 0; i < cur_.size(); ++i) {
     MapPoint* p = cur_.points[i];
-    if (p && !cur_.outlier[i] && !p->bad) ++p->found;
+    if (!p || cur_.outlier[i] || p->bad) continue;
+    ++p->found;
+    // The last frame's temporary points (id -1) help the pose but are not the map.
+    if (p->id >= 0) ++*map_inliers;
   }
-  return MapInliers();
-}
-
-int Tracker::MapInliers() const {
-  // The last frame's temporary points (id -1) help the pose but are not the map: a frame that
-  // matches only them is tracked frame to frame, not in the map.
-  int n = 0;
-  for (size_t i = 0; i < cur_.size(); ++i) {
-    const MapPoint* p = cur_.points[i];
-    if (p && !cur_.outlier[i] && !p->bad && p->id >= 0) ++n;
-  }
-  return n;
+  return inliers;
 }
 
 bool Tracker::Relocalise() {

@@ -107,10 +107,9 @@ class Tracker {
   // tracking.lost_carry_min_inliers are inliers; `inliers`: the best count found. `guess` by value:
   // callers pass cur_.T_c_w, which the search moves (and puts back to the guess).
   bool CarryFromLastFrame(Eigen::Isometry3d guess, Eigen::Isometry3d* pose, int* inliers);
-  // Tracks the local map; returns the frame's inliers that are map points (MapInliers).
-  int TrackLocalMap();
-  // The current frame's inliers that are map points, not the last frame's temporary ones.
-  int MapInliers() const;
+  // Tracks the local map; returns the pose's inliers, of which `map_inliers` are map points (the
+  // rest the last frame's temporary stereo points).
+  int TrackLocalMap(int* map_inliers);
   // Appends to the local keyframes up to tracking.spatial_keyframes others near the predicted
   // camera (centre within spatial_radius_m, optical axis within spatial_max_angle_deg), nearest first.
   void AddSpatialKeyFrames(std::vector<KeyFrame*>* local, std::set<KeyFrame*>* in_local) const;
