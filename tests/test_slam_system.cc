@@ -45,8 +45,8 @@ struct Plane {
 // Camera frame at the start: x right, y down, z forward. Drawn in this order (each nearer
 // than what it covers). Scene 1 is the same geometry with other textures: a place never mapped.
 // Scene 2 has a panel 1.2 x 0.9 m at 1.2 m that fills most of the view (a pushed crate).
-// Scene 3 is scene 1's wall and floor behind scene 0's near panel: of a place never mapped,
-// only the panel is known.
+// Scene 3 is scene 0's wall and near panel over scene 1's floor: a mapped view whose floor was
+// never mapped.
 const std::vector<Plane>& Scene(int variant = 0) {
   const double s = kTexScale;
   if (variant == 3) {
@@ -390,6 +390,11 @@ Eigen::Isometry3d WobblyPose(int k) {
   return T;
 }
 
+// Position error of frame k's pose on the wobbly path, both relative to frame 0 (where the map starts).
+double WobblyErrorM(const slam::TrackResult& r, int k) {
+  return (r.T_w_c.translation() - (WobblyPose(0).inverse() * WobblyPose(k)).translation()).norm();
+}
+
 // Lost frames that still see the last frame's stereo points are carried by them (frame to
 // frame), not by the constant velocity, and a frame carried as well as a tracked one starts the
 // new segment at once. The camera wobbles along the known path; from frame 10 it sees the same
@@ -399,10 +404,6 @@ Eigen::Isometry3d WobblyPose(int k) {
 // With the carry off (lost_carry_min_inliers 0) frames 10-29 extrapolate the velocity of frames
 // 8-9 through the wobble, and the 20th lost frame, 30, starts the segment where that left it.
 TEST(SlamSystem, LostFramesAreCarriedByTheLastFramesStereoPoints) {
-  // Error of the pose against the truth, both relative to frame 0 (where the map starts).
-  auto error_m = [](const slam::TrackResult& r, int k) {
-    return (r.T_w_c.translation() - (WobblyPose(0).inverse() * WobblyPose(k)).translation()).norm();
-  };
   struct Outcome {
     int lost = 0, segment_frame = -1, carry_inliers_frame_11 = 0;
     double segment_start_m = 0, worst_m = 0;  // from frame 10 on
@@ -423,11 +424,11 @@ TEST(SlamSystem, LostFramesAreCarriedByTheLastFramesStereoPoints) {
       if (r.status == slam::TrackStatus::kInitialised) {
         EXPECT_EQ(o.segment_frame, -1) << "a second new segment at frame " << k;
         o.segment_frame = k;
-        o.segment_start_m = error_m(r, k);
+        o.segment_start_m = WobblyErrorM(r, k);
       } else if (o.segment_frame >= 0) {
         EXPECT_EQ(r.status, slam::TrackStatus::kTracking) << k;
       }
-      o.worst_m = std::max(o.worst_m, error_m(r, k));
+      o.worst_m = std::max(o.worst_m, WobblyErrorM(r, k));
     }
     system.Finish();
     return o;
@@ -456,9 +457,6 @@ TEST(SlamSystem, LostFramesAreCarriedByTheLastFramesStereoPoints) {
 // by those points. Frame 11 fails to relocalise and is carried in turn; a lost frame carried as
 // well as a tracked one, it starts the new segment on frame 12, not on 11.
 TEST(SlamSystem, TheFirstLostFrameIsCarriedByTheTrackedLastFramesPoints) {
-  auto error_m = [](const slam::TrackResult& r, int k) {
-    return (r.T_w_c.translation() - (WobblyPose(0).inverse() * WobblyPose(k)).translation()).norm();
-  };
   auto run = [&](int carry_min_inliers) {
     slam::SlamSettings settings;
     settings.tracking.lost_carry_min_inliers = carry_min_inliers;
@@ -477,7 +475,8 @@ TEST(SlamSystem, TheFirstLostFrameIsCarriedByTheTrackedLastFramesPoints) {
     std::printf("frame %d: carried: status %d, %d map inliers, carried by %d, %.2f mm off; constant velocity: "
                 "status %d, %.2f mm off\n",
                 k, static_cast<int>(carried[k].status), carried[k].map_inliers, carried[k].carry_inliers,
-                error_m(carried[k], k) * 1e3, static_cast<int>(velocity[k].status), error_m(velocity[k], k) * 1e3);
+                WobblyErrorM(carried[k], k) * 1e3, static_cast<int>(velocity[k].status),
+                WobblyErrorM(velocity[k], k) * 1e3);
   }
   for (int k = 1; k <= 9; ++k) EXPECT_EQ(carried[k].status, slam::TrackStatus::kTracking) << k;
   // Frame 10: lost (frame 9's temporary points are not map points), carried from tracked frame 9.
@@ -500,7 +499,7 @@ TEST(SlamSystem, TheFirstLostFrameIsCarriedByTheTrackedLastFramesPoints) {
   };
   std::printf("step 9 -> 10 rotation error: carried %.3f deg, constant velocity %.3f deg\n", step_error_deg(carried),
               step_error_deg(velocity));
-  EXPECT_LT(error_m(carried[10], 10), 0.003);  // measured 1.47 mm (frame 9: 1.41)
+  EXPECT_LT(WobblyErrorM(carried[10], 10), 0.003);  // measured 1.47 mm (frame 9: 1.41)
   EXPECT_LT(step_error_deg(carried), 0.2);  // measured 0.100 deg
   EXPECT_GT(step_error_deg(velocity), 5 * step_error_deg(carried));  // measured 1.256 deg
 }
