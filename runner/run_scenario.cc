@@ -130,7 +130,11 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   Scenario resolved = s;
   if (opt.slam) {
     const std::string settings_path = s.slam.config.empty() ? slam::DefaultSlamSettingsPath() : s.slam.config;
-    settings = slam::LoadSlamSettings(settings_path, s.slam.settings_overrides);
+    // The estimator integrates the IMU as the scenario's IMU samples it, unless slam.lo says
+    // otherwise (its overrides come after).
+    std::vector<std::string> overrides{"lo.imu_sampling=" + s.sensors.imu.sampling};
+    overrides.insert(overrides.end(), s.slam.settings_overrides.begin(), s.slam.settings_overrides.end());
+    settings = slam::LoadSlamSettings(settings_path, overrides);
     const std::string pyramid = slam::PyramidProblem(settings->orb.scale_factor, settings->orb.num_levels,
                                                      s.sensors.camera.width, s.sensors.camera.height);
     if (!pyramid.empty()) throw InputError(settings->pyramid_where + ": " + pyramid);
@@ -242,7 +246,10 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
     const int64_t t_ns = world.time_ns();
 
     if (sensors.imu_clock.Due(t_ns)) {
-      const ImuSample imu = sensors.imu.Measure(t_ns, world.TrueAccel(), world.TrueGyro());
+      const sim::World::ImuMean mean = world.TakeImuMean();
+      const bool instant = s.sensors.imu.sampling == "instant";
+      const ImuSample imu = sensors.imu.Measure(t_ns, instant ? world.TrueAccel() : mean.accel_i,
+                                                instant ? world.TrueGyro() : mean.gyro_i);
       if (recorder) recorder->AddImu(imu);
       if (lo) {
         measured.push_back([&lo, &fused_lo, imu] {

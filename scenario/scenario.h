@@ -66,6 +66,10 @@ struct ImuConfig {                   // sensors.imu
   double gyro_noise = 0.002;         // white noise std per sample (rad/s)
   double accel_bias_walk = 0.001;    // bias random walk (m/s^2/sqrt(s))
   double gyro_bias_walk = 0.0001;    // bias random walk (rad/s/sqrt(s))
+  // What one reading holds: "instant", the physics state at the reading (it aliases the contacts'
+  // millisecond jolts), or "mean", the mean of the physics steps since the last reading (a MEMS
+  // IMU's decimation filter: its delta-velocity over the interval, divided by it).
+  std::string sampling = "instant";
 };
 
 struct JointsConfig {                // sensors.joints

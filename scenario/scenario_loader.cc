@@ -164,6 +164,7 @@ void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
   imu.Number("gyro_noise", &s->imu.gyro_noise, NumberRange::NonNegative());
   imu.Number("accel_bias_walk", &s->imu.accel_bias_walk, NumberRange::NonNegative());
   imu.Number("gyro_bias_walk", &s->imu.gyro_bias_walk, NumberRange::NonNegative());
+  imu.Choice("sampling", &s->imu.sampling, {"instant", "mean"});
   imu.RejectUnknownKeys();
 
   YamlMapReader joints = m.Map("joints");
@@ -345,6 +346,12 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   std::string contact;
   if (lo.Choice("contact", &contact, {"schedule", "touch", "estimated"})) {
     s->lo.emplace_back("contact", contact);
+  }
+  std::string imu_sampling;
+  if (lo.Choice("imu_sampling", &imu_sampling, {"instant", "mean"})) s->lo.emplace_back("imu_sampling", imu_sampling);
+  std::string slip_reference;
+  if (lo.Choice("slip_reference", &slip_reference, {"position", "prediction"})) {
+    s->lo.emplace_back("slip_reference", slip_reference);
   }
   for (const char* key : {"attitude_gain", "gyro_bias_gain", "gravity_gate_mps2", "attitude_accel_average_s",
                           "accel_noise", "stance_foot_noise", "swing_foot_noise", "kin_position_noise_m",

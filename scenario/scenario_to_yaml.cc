@@ -76,6 +76,7 @@ void Sensors(YAML::Emitter& out, const SensorsConfig& s) {
   EmitNumber(out, "gyro_noise", s.imu.gyro_noise);
   EmitNumber(out, "accel_bias_walk", s.imu.accel_bias_walk);
   EmitNumber(out, "gyro_bias_walk", s.imu.gyro_bias_walk);
+  out << YAML::Key << "sampling" << YAML::Value << s.imu.sampling;
   out << YAML::EndMap;
   out << YAML::Key << "joints" << YAML::Value << YAML::Flow << YAML::BeginMap;
   EmitNumber(out, "rate_hz", s.joints.rate_hz);

@@ -95,6 +95,21 @@ void World::Step() {
   mjtNum* xfrc = data_->xfrc_applied + 6 * trunk_body_;  // force (3) then torque (3), world frame
   for (int k = 0; k < 3; ++k) xfrc[k] = force[k];
   mj_step(model_.get(), data_.get());
+  accel_sum_ += TrueAccel();
+  gyro_sum_ += TrueGyro();
+  ++imu_steps_;
+}
+
+World::ImuMean World::TakeImuMean() {
+  ImuMean m{TrueAccel(), TrueGyro()};
+  if (imu_steps_ > 0) {
+    m.accel_i = accel_sum_ / imu_steps_;
+    m.gyro_i = gyro_sum_ / imu_steps_;
+  }
+  accel_sum_.setZero();
+  gyro_sum_.setZero();
+  imu_steps_ = 0;
+  return m;
 }
 
 int64_t World::time_ns() const { return std::llround(data_->time * 1e9); }

@@ -51,6 +51,13 @@ class World {
   Eigen::Vector3d FootSoleVelocityWorld(Leg leg) const;
   Eigen::Vector3d TrueAccel() const;  // accelerometer reading without noise (m/s^2, IMU frame)
   Eigen::Vector3d TrueGyro() const;   // gyro reading without noise (rad/s, IMU frame)
+  // The means of the accelerometer and gyro readings of the physics steps since the last call
+  // (each step's readings are those of the state it started from), and starts a new interval;
+  // before any step, the current readings.
+  struct ImuMean {
+    Eigen::Vector3d accel_i, gyro_i;
+  };
+  ImuMean TakeImuMean();
   bool TrunkTouchesGround() const;    // trunk or head geom in contact with a non-robot geom
   double TrunkTiltRad() const;        // angle between trunk z and world z (rad)
 
@@ -73,6 +80,8 @@ class World {
   int trunk_body_ = -1;
   int cam_left_ = -1, cam_right_ = -1;
   int accel_adr_ = -1, gyro_adr_ = -1;  // sensordata addresses
+  Eigen::Vector3d accel_sum_ = Eigen::Vector3d::Zero(), gyro_sum_ = Eigen::Vector3d::Zero();
+  int imu_steps_ = 0;                     // physics steps summed in accel_sum_ / gyro_sum_
   std::array<int, kNumJoints> qpos_adr_{}, dof_adr_{}, actuator_{};
   std::array<int, kNumLegs> foot_geom_{}, foot_site_{};
   std::vector<int> trunk_geoms_;

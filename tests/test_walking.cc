@@ -159,3 +159,62 @@ TEST(Walking, StandingImuReadsGravityAndGyroBias) {
 
 }  // namespace
 }  // namespace viqu
+
+namespace viqu {
+namespace {
+
+// sensors.imu.sampling: a "mean" reading (the mean of the physics steps since the last reading)
+// integrates to the trunk's true change of velocity over the trot's contact jolts; an "instant"
+// reading (the state at the reading), held over the interval as the estimator holds it, does not:
+// the jolts last a few milliseconds and the 200 Hz samples alias them. Checked against the
+// simulator's trunk velocity over every 50 ms (a camera frame) of 8 s of trotting (World::TakeImuMean
+// is what the run loop gives the IMU model with sampling: mean).
+TEST(Walking, MeanImuReadingsIntegrateToTheTrunksVelocityChange) {
+  Scenario s = FlatScenario();
+  s.robot.command.velocity = {{0.0, 0.0, 0.0}, {0.5, 0.12, 0.0}};
+  runner::RobotRig rig(s);
+  sim::World& w = rig.world();
+  const double dt = w.model()->opt.timestep;
+  const int per_sample = 5;                        // 200 Hz readings at the 1 ms physics step
+  const int per_window = 50;                       // 50 ms windows (physics steps)
+  ASSERT_NEAR(dt, 0.001, 1e-12);
+  const Eigen::Vector3d g(0, 0, 9.81);
+  for (int k = 0; k < 2000; ++k) rig.Step(rig.TruePose2());  // up to speed
+  w.TakeImuMean();
+  Eigen::Vector3d dv_mean = Eigen::Vector3d::Zero(), dv_instant = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q_last = w.GroundTruth().T_w_body.q_w_x;
+  Eigen::Vector3d a_instant_w = q_last * w.TrueAccel() - g;   // held over the next interval
+  Eigen::Vector3d v_window = w.GroundTruth().vel_w_body;
+  double sq_mean = 0, sq_instant = 0;
+  int windows = 0;
+  for (int k = 1; k <= 8000; ++k) {
+    rig.Step(rig.TruePose2());
+    if (k % per_sample) continue;
+    const double interval = per_sample * dt;
+    const Eigen::Quaterniond q = w.GroundTruth().T_w_body.q_w_x;
+    const sim::World::ImuMean m = w.TakeImuMean();
+    dv_mean += (0.5 * (q_last * m.accel_i + q * m.accel_i) - g) * interval;
+    dv_instant += a_instant_w * interval;
+    a_instant_w = q * w.TrueAccel() - g;
+    q_last = q;
+    if (k % per_window) continue;
+    const Eigen::Vector3d v = w.GroundTruth().vel_w_body;
+    sq_mean += (dv_mean - (v - v_window)).squaredNorm();
+    sq_instant += (dv_instant - (v - v_window)).squaredNorm();
+    ++windows;
+    v_window = v;
+    dv_mean.setZero();
+    dv_instant.setZero();
+  }
+  const double rms_mean = std::sqrt(sq_mean / windows), rms_instant = std::sqrt(sq_instant / windows);
+  std::printf("velocity change over 50 ms from the readings, error rms (norm): mean %.5f m/s, instant %.5f m/s "
+              "(%d windows)\n", rms_mean, rms_instant, windows);
+  EXPECT_LT(rms_mean, 0.5 * rms_instant);
+  // Measured: mean 0.0079 m/s, instant 0.0207 (session 28). Summing every physics step's reading
+  // turned by that step's own orientation errs by the same 0.0079: the rest is the simulator's
+  // (its accelerometer against its integrator), not the sampling's. Bound: 2x the measured.
+  EXPECT_LT(rms_mean, 0.016);
+}
+
+}  // namespace
+}  // namespace viqu

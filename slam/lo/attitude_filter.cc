@@ -45,7 +45,8 @@ void AttitudeFilter::Add(const ImuSample& s) {
   // holding the earlier rate instead would lag the orientation by half a sample interval, which
   // on the trot's jolts turned each camera frame's prior by 0.2 deg instead of 0.08 deg.
   if (dt > 0 && have_rate_) {
-    q_w_b_ = (q_w_b_ * Exp((0.5 * (last_gyro_ + s.gyro_i) - bias_ + correction_) * dt)).normalized();
+    const Eigen::Vector3d rate = opt_.interval_mean ? s.gyro_i : 0.5 * (last_gyro_ + s.gyro_i);
+    q_w_b_ = (q_w_b_ * Exp((rate - bias_ + correction_) * dt)).normalized();
   }
   last_t_ns_ = s.t_ns;
   last_gyro_ = s.gyro_i;

@@ -24,6 +24,9 @@ struct AttitudeFilterOptions {
   // zero-mean accelerations, while the mean of each sample's normalised direction is biased by
   // their correlations (on the trot, fore-aft with vertical). 0: each sample on its own.
   double accel_average_s = 0.0;
+  // A reading's gyro is the mean rate over the interval since the previous reading (true), or the
+  // rate at its time (false: the interval takes the mean of its two ends' rates).
+  bool interval_mean = false;
 };
 
 class AttitudeFilter {

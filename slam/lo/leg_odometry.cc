@@ -27,6 +27,7 @@ AttitudeFilterOptions AttitudeOptionsOf(const slam::LegOdometrySettings& s) {
   o.gravity_gate_mps2 = s.gravity_gate_mps2;
   o.gravity_mps2 = kGravity;
   o.accel_average_s = s.attitude_accel_average_s;
+  o.interval_mean = s.imu_sampling == "mean";
   return o;
 }
 
@@ -48,6 +49,14 @@ LegOdometry::LegOdometry(const slam::LegOdometrySettings& settings, const kin::L
     throw InputError("lo.contact must be schedule, touch or estimated, not '" + settings_.contact + "'");
   }
   estimated_contact_ = settings_.contact == "estimated";
+  if (settings_.imu_sampling != "instant" && settings_.imu_sampling != "mean") {
+    throw InputError("lo.imu_sampling must be instant or mean, not '" + settings_.imu_sampling + "'");
+  }
+  if (settings_.slip_reference != "position" && settings_.slip_reference != "prediction") {
+    throw InputError("lo.slip_reference must be position or prediction, not '" + settings_.slip_reference + "'");
+  }
+  slip_on_prediction_ = settings_.slip_reference == "prediction";
+  mean_imu_ = settings_.imu_sampling == "mean";
 }
 
 void LegOdometry::Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body) {
@@ -57,6 +66,7 @@ void LegOdometry::Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body) {
   kf_.Reset(T_w_body.translation(), Eigen::Vector3d::Zero(), feet, kStartPositionStd, kStartVelocityStd, kStartFootStd);
   last_imu_ns_.reset();
   last_accel_w_.setZero();
+  travel_w_.setZero();
   started_ = true;
   feet_placed_ = false;
   window_.clear();
@@ -89,9 +99,15 @@ void LegOdometry::CorrectPose(const Eigen::Isometry3d& T_w_body) {
 void LegOdometry::AddImu(const ImuSample& s) {
   if (!started_) return;
   const auto t0 = std::chrono::steady_clock::now();
+  const Eigen::Quaterniond q_before = attitude_.q_w_b();
   attitude_.Add(s);
-  // The previous sample's acceleration held over the interval, as the gyro is.
   const double dt = last_imu_ns_ ? (s.t_ns - *last_imu_ns_) * 1e-9 : 0.0;
+  if (mean_imu_) {
+    // The reading is the interval's mean specific force: it drives the interval, turned by the
+    // mean of the orientations at its ends.
+    last_accel_w_ = 0.5 * (q_before * s.accel_i + attitude_.q_w_b() * s.accel_i) - Eigen::Vector3d(0, 0, kGravity);
+  }
+  // instant: the previous reading's acceleration is held over the interval.
   // A stance foot that holds stays put but for its rolling; a swing or slipping foot is free.
   std::array<double, kNumLegs> foot_noise;
   std::array<Eigen::Vector3d, kNumLegs> foot_vel;
@@ -100,9 +116,11 @@ void LegOdometry::AddImu(const ImuSample& s) {
     foot_noise[i] = pinned ? settings_.stance_foot_noise : settings_.swing_foot_noise;
     foot_vel[i] = pinned ? roll_w_[i] : Eigen::Vector3d::Zero();
   }
+  const Eigen::Vector3d p_before = kf_.position();
   kf_.Predict(dt, last_accel_w_, settings_.accel_noise, foot_noise, foot_vel);
+  travel_w_ += kf_.position() - p_before;
   last_imu_ns_ = s.t_ns;
-  last_accel_w_ = attitude_.q_w_b() * s.accel_i - Eigen::Vector3d(0, 0, kGravity);
+  if (!mean_imu_) last_accel_w_ = attitude_.q_w_b() * s.accel_i - Eigen::Vector3d(0, 0, kGravity);
   update_ms_sum_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -179,8 +197,9 @@ void LegOdometry::AddJoints(const JointState& js) {
     const double dt = (js.t_ns - ref->t_ns) * 1e-9;
     v_foot[i] = 0.5 * (roll_w_[i] + ref->roll_w[i]) - (rel_w[i] - ref->rel_w[i]) / dt;
     v_std[i] = settings_.kin_velocity_noise_mps * std::max(1.0, settings_.velocity_window_s / dt);
-    // The filter's own mean velocity over the same window (its prediction for now).
-    const Eigen::Vector3d v_mean = (kf_.position() - ref->p_w) / dt;
+    // The filter's own mean velocity over the same window.
+    const Eigen::Vector3d v_mean =
+        (slip_on_prediction_ ? travel_w_ - ref->travel_w : kf_.position() - ref->p_w) / dt;
     const Eigen::Vector3d innovation = *v_foot[i] - v_mean;
     f.mahalanobis2 = kf_.VelocityInnovationMahalanobis2(innovation, v_std[i]);
     f.slipping = f.mahalanobis2 > settings_.slip_gate_chi2;
@@ -218,7 +237,7 @@ void LegOdometry::AddJoints(const JointState& js) {
     attitude_.AddGyroBias(R.transpose() * Eigen::Vector3d(0, 0, *db));
   }
   // Keep the readings of the last window (and the one just before it).
-  window_.push_back(WindowSample{js.t_ns, kf_.position(), rel_w, roll_w_});
+  window_.push_back(WindowSample{js.t_ns, kf_.position(), travel_w_, rel_w, roll_w_});
   while (window_.size() > 2 && window_[1].t_ns <= js.t_ns - window_ns) window_.pop_front();
   update_ms_sum_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   ++updates_;

@@ -75,6 +75,8 @@ class LegOdometry {
   AttitudeFilter attitude_;
   LegImuKf kf_;
   bool estimated_contact_ = false;  // lo.contact is estimated (the others come through AddContact)
+  bool slip_on_prediction_ = false; // lo.slip_reference is prediction
+  bool mean_imu_ = false;           // lo.imu_sampling is mean
   bool started_ = false;
   bool feet_placed_ = false;
   std::optional<int64_t> last_imu_ns_;
@@ -86,10 +88,15 @@ class LegOdometry {
   struct WindowSample {
     int64_t t_ns = 0;
     Eigen::Vector3d p_w;                             // filter position after the reading (m)
+    Eigen::Vector3d travel_w;                        // travel_w_ at the reading (m)
     std::array<Eigen::Vector3d, kNumLegs> rel_w;     // foot minus body, world axes (m)
     std::array<Eigen::Vector3d, kNumLegs> roll_w;    // rolling velocity of each foot centre (m/s)
   };
   std::deque<WindowSample> window_;
+  // The body's travel by the filter's predictions alone (its velocity state integrated over the
+  // IMU samples), without the jumps its measurement updates make in the position: the slip
+  // gates' reference with lo.slip_reference: prediction.
+  Eigen::Vector3d travel_w_ = Eigen::Vector3d::Zero();
   std::array<FootStatus, kNumLegs> feet_{};
   YawBiasFromFeet yaw_bias_;
   // Rolling displacement of each foot's centre since its touch-down (m, world): the contact

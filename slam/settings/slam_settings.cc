@@ -170,6 +170,8 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
 
 void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Choice("contact", &lo->contact, kContactSources);
+  m->Choice("imu_sampling", &lo->imu_sampling, {"instant", "mean"});
+  m->Choice("slip_reference", &lo->slip_reference, {"position", "prediction"});
   m->Number("attitude_gain", &lo->attitude_gain, NumberRange::Closed(0, 100));
   m->Number("gyro_bias_gain", &lo->gyro_bias_gain, NumberRange::Closed(0, 100));
   m->Number("gravity_gate_mps2", &lo->gravity_gate_mps2, NumberRange::Positive());
@@ -370,6 +372,8 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   const LegOdometrySettings& lo = s.lo;
   out << YAML::Key << "lo" << YAML::Value << YAML::BeginMap;
   EmitWord(out, "contact", lo.contact);
+  EmitWord(out, "imu_sampling", lo.imu_sampling);
+  EmitWord(out, "slip_reference", lo.slip_reference);
   EmitNumber(out, "attitude_gain", lo.attitude_gain);
   EmitNumber(out, "gyro_bias_gain", lo.gyro_bias_gain);
   EmitNumber(out, "gravity_gate_mps2", lo.gravity_gate_mps2);

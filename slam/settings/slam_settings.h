@@ -135,6 +135,11 @@ struct DynamicSettings {
 // says how each value enters the filter.
 struct LegOdometrySettings {
   std::string contact = "touch";     // schedule (gait's planned stance) | touch (foot sensors) | estimated
+  // What one IMU reading holds: instant (the value at its time: the interval between two readings
+  // takes their average rate and the earlier acceleration) | mean (the mean over the interval
+  // since the previous reading, as a MEMS IMU's decimation filter gives: it is integrated over
+  // that interval). A live run sets it from its scenario's sensors.imu.sampling.
+  std::string imu_sampling = "instant";
   // Attitude: complementary filter on SO(3), gyro integration with a gravity correction from the
   // accelerometer (Mahony's form) and an integral term that estimates the gyro bias.
   double attitude_gain = 0.5;        // gravity correction of roll and pitch (1/s)
@@ -160,6 +165,10 @@ struct LegOdometrySettings {
   // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
   // stance foot agrees with the filter (m/s).
   double slip_speed_mps = 0.05;
+  // The filter's velocity the slip gates compare a foot with, over the foot's window: position
+  // (the change of the filter's position) | prediction (the body's travel by the filter's
+  // predictions alone, without the jumps its measurement updates make in the position).
+  std::string slip_reference = "position";
   // Gyro bias about the vertical, from pairs of stance feet: two feet that hold keep the
   // horizontal direction between them fixed in the world, so its turn in the filter's world
   // frame over a stance is the yaw the gyro bias added (slam/lo/yaw_bias_from_feet.h).
