@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/errors.h"
 #include "runner/slip_score.h"
 #include "kinematics/leg_kinematics.h"
 #include "slam/lo/attitude_filter.h"
@@ -154,6 +155,37 @@ TEST(AttitudeFilter, IntegratesARampingRateWithoutLag) {
   const Eigen::AngleAxisd aa = IntegrateGyroAboutZ([](double t) { return 2.0 * t; }, 1.0);
   EXPECT_NEAR(aa.angle(), 1.0, 1e-9);
   EXPECT_NEAR(aa.axis().z(), 1.0, 1e-9);
+}
+
+TEST(AttitudeFilter, IntervalMeanRatesIntegrateExactly) {
+  // lo.imu_sampling: mean. The rate about z is 3 t^2 (rad/s), so the yaw is t^3: 1 rad at 1 s.
+  // Each reading is the rate's mean over the 5 ms since the previous one, (b^3 - a^3) / (b - a);
+  // integrated over its own interval it gives the yaw exactly, while taken as the rate at its time
+  // (the mean of two readings per interval) it lags by half an interval: 3 t^2 * 2.5 ms at the
+  // end (7.5 mrad).
+  const auto run = [](bool interval_mean) {
+    lo::AttitudeFilterOptions o;
+    o.attitude_gain = 0;
+    o.gyro_bias_gain = 0;
+    o.interval_mean = interval_mean;
+    lo::AttitudeFilter f(o);
+    f.Reset(0, Eigen::Quaterniond::Identity());
+    for (int k = 0; k <= 200; ++k) {
+      const double b = k * 0.005, a = std::max(0.0, b - 0.005);
+      ImuSample s;
+      s.t_ns = k * 5'000'000LL;
+      s.gyro_i = Eigen::Vector3d(0, 0, k == 0 ? 0.0 : (b * b * b - a * a * a) / (b - a));
+      s.accel_i = Eigen::Vector3d(0, 0, 9.81);
+      f.Add(s);
+    }
+    const Eigen::AngleAxisd aa(f.q_w_b());
+    return aa.angle() * aa.axis().z();
+  };
+  EXPECT_NEAR(run(true), 1.0, 1e-9);
+  // The instant rule integrates the readings' trapezoid, the sum over k = 1..200 of
+  // (m_{k-1} + m_k) / 2 * dt with m_0 = 0 and m_k = t_k^2 + t_k t_{k-1} + t_{k-1}^2: 0.99253744
+  // (summed by hand in Python), 7.5 mrad short.
+  EXPECT_NEAR(run(false), 0.9925374375, 1e-9);
 }
 
 TEST(AttitudeFilter, GravityCorrectsTiltAndEstimatesTheGyroBias) {
@@ -345,6 +377,36 @@ class SyntheticStance : public ::testing::Test {
   std::array<Eigen::Vector3d, kNumLegs> feet_body_;
 };
 
+TEST_F(SyntheticStance, ImuReadingsDriveTheIntervalTheirSamplingSays) {
+  // The body accelerates along x at 1 m/s^3 * t (level, no joints read, no attitude correction),
+  // for 1 s: its velocity at the end is 0.5 m/s. lo.imu_sampling: mean, readings the
+  // acceleration's mean over the 5 ms before them, j (a + b) / 2: each drives its own interval,
+  // so the velocity is exact. instant, readings j t at their time, each held over the next
+  // interval: the sum of j t_k dt for k < 200 is 0.5 - j dt / 2 = 0.4975 m/s.
+  const auto run = [&](const std::string& sampling) {
+    slam::LegOdometrySettings s;
+    s.imu_sampling = sampling;
+    s.attitude_gain = 0;
+    s.gyro_bias_gain = 0;
+    lo::LegOdometry lo(s, kin_);
+    lo.Start(0, Eigen::Isometry3d::Identity());
+    for (int k = 0; k <= 200; ++k) {
+      const double b = k * 0.005, a = std::max(0.0, b - 0.005);
+      ImuSample imu;
+      imu.t_ns = k * 5'000'000LL;
+      imu.accel_i = Eigen::Vector3d(sampling == "mean" ? 0.5 * (a + b) : b, 0, 9.81);
+      imu.gyro_i.setZero();
+      lo.AddImu(imu);
+    }
+    return lo.velocity().x();
+  };
+  EXPECT_NEAR(run("mean"), 0.5, 1e-9);
+  EXPECT_NEAR(run("instant"), 0.4975, 1e-9);
+  slam::LegOdometrySettings bad;
+  bad.imu_sampling = "average";
+  EXPECT_THROW(lo::LegOdometry(bad, kin_), InputError);
+}
+
 TEST_F(SyntheticStance, StandingStillStaysPutWithoutSlipFlags) {
   slam::LegOdometrySettings s;
   lo::LegOdometry lo(s, kin_);
@@ -395,6 +457,31 @@ TEST_F(SyntheticStance, ALongSlideOfOneFootStaysGatedOutWhileOthersHold) {
   EXPECT_LE(by_speed[1] + by_speed[2] + by_speed[3], 2);
   EXPECT_LT(by_chi2[0], by_speed[0] / 2);
   EXPECT_LT(err_speed, 0.5 * err_chi2);
+}
+
+// lo.slip_reference: prediction. The gates compare a foot with the body's travel by the filter's
+// predictions alone (not its position, which the updates move): standing still flags nothing,
+// and the long slide above is held out as with the default reference.
+TEST_F(SyntheticStance, ThePredictionReferenceFlagsTheSlideAndNothingElse) {
+  slam::LegOdometrySettings s;
+  s.slip_reference = "prediction";
+  std::array<int, kNumLegs> standing, sliding;
+  lo::LegOdometry still(s, kin_);
+  const double err_still = Run(&still, 10, -1, 0, &standing);
+  lo::LegOdometry slide(s, kin_);
+  const double err_slide = Run(&slide, 1.6, 0, 0.1, &sliding);
+  std::printf("prediction reference: standing 10 s flags %d %d %d %d, error %.2f mm; FL sliding 0.6 s: flagged %d "
+              "(others %d) of 120, error %.2f mm\n",
+              standing[0], standing[1], standing[2], standing[3], err_still * 1e3, sliding[0],
+              sliding[1] + sliding[2] + sliding[3], err_slide * 1e3);
+  for (int f : standing) EXPECT_LE(f, 2);
+  EXPECT_LT(err_still, 0.005);
+  EXPECT_GE(sliding[0], 115);
+  EXPECT_LE(sliding[1] + sliding[2] + sliding[3], 2);
+  EXPECT_LT(err_slide, 0.0004);  // measured 0.18 mm (as with the default reference), about 2x
+  slam::LegOdometrySettings bad;
+  bad.slip_reference = "velocity";
+  EXPECT_THROW(lo::LegOdometry(bad, kin_), InputError);
 }
 
 // All four feet sliding together (treading in place on ice) is a limit of the gates: the

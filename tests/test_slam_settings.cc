@@ -175,7 +175,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 7 + 10 + 30 + 9 + 8 + 3 + 23 + 26;
+constexpr int kLeafKeys = 4 + 7 + 10 + 30 + 9 + 8 + 3 + 23 + 28;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
