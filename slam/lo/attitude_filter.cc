@@ -41,9 +41,10 @@ Eigen::Quaterniond AttitudeFilter::OrientationAt(int64_t t_ns) const {
 void AttitudeFilter::Add(const ImuSample& s) {
   if (last_t_ns_ && s.t_ns < *last_t_ns_) throw std::invalid_argument("IMU time went backwards");
   const double dt = last_t_ns_ ? (s.t_ns - *last_t_ns_) * 1e-9 : 0.0;
-  // Integrate the mean of the interval's two rates (bias-corrected, plus the last correction):
-  // holding the earlier rate instead would lag the orientation by half a sample interval, which
-  // on the trot's jolts turned each camera frame's prior by 0.2 deg instead of 0.08 deg.
+  // Instant readings: integrate the mean of the interval's two rates (bias-corrected, plus the
+  // last correction): holding the earlier rate instead would lag the orientation by half a sample
+  // interval, which on the trot's jolts turned each camera frame's prior by 0.2 deg instead of
+  // 0.08 deg. An interval-mean reading is the interval's own rate.
   if (dt > 0 && have_rate_) {
     const Eigen::Vector3d rate = opt_.interval_mean ? s.gyro_i : 0.5 * (last_gyro_ + s.gyro_i);
     q_w_b_ = (q_w_b_ * Exp((rate - bias_ + correction_) * dt)).normalized();
