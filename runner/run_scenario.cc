@@ -242,14 +242,14 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   ctrl::Pose2 steer_pose = Pose2Of(ToIsometry(world.GroundTruth().T_w_body));
   int64_t frame_index = 0;
   int stop_signal = 0;
+  const bool imu_mean = s.sensors.imu.sampling == "mean";  // sensors.imu.sampling, decided once
   while (true) {
     const int64_t t_ns = world.time_ns();
 
     if (sensors.imu_clock.Due(t_ns)) {
       const sim::World::ImuMean mean = world.TakeImuMean();
-      const bool instant = s.sensors.imu.sampling == "instant";
-      const ImuSample imu = sensors.imu.Measure(t_ns, instant ? world.TrueAccel() : mean.accel_i,
-                                                instant ? world.TrueGyro() : mean.gyro_i);
+      const ImuSample imu = sensors.imu.Measure(t_ns, imu_mean ? mean.accel_i : world.TrueAccel(),
+                                                imu_mean ? mean.gyro_i : world.TrueGyro());
       if (recorder) recorder->AddImu(imu);
       if (lo) {
         measured.push_back([&lo, &fused_lo, imu] {
