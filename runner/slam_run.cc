@@ -108,6 +108,11 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
     json->Set("ate.min_m", ate.ate.min);
     json->Set("ate.max_m", ate.ate.max);
     json->Set("ate.pairs", static_cast<int64_t>(ate.pairs));
+    // The same with a scale (Sim(3)): what is left once the estimate's scale error is taken
+    // out, and that scale (ground truth over estimate: above 1, the estimate is too short).
+    const eval::AteResult ate_sim3 = eval::ComputeAte(est_, gt, true);
+    json->Set("ate.sim3_rmse_m", ate_sim3.ate.rmse);
+    json->Set("ate.sim3_scale", ate_sim3.alignment.scale);
     if (path_length_m > 0) json->Set("ate.rmse_pct_path", 100.0 * ate.ate.rmse / path_length_m);
     json->Set("rpe.trans_rmse_m", rpe.rmse);
     json->Set("rpe.delta_frames", 1);
