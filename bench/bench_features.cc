@@ -6,6 +6,7 @@
 #include "sim/stereo_renderer.h"
 #include "slam/features/orb_extractor.h"
 #include "slam/features/stereo_matcher.h"
+#include "slam/settings/slam_settings.h"
 
 namespace viqu {
 namespace {
@@ -49,6 +50,8 @@ void BM_OrbExtract(benchmark::State& state) {
 }
 BENCHMARK(BM_OrbExtract)->Unit(benchmark::kMillisecond);
 
+// Stereo matching with the options of slam/config/default.yaml (arg 0: what runs) and with an
+// upright window only and parabola sub-pixel (arg 1: the matcher before session 31).
 void BM_StereoMatch(benchmark::State& state) {
   const Pair& p = RoomPair();
   slam::OrbExtractor orb;
@@ -56,10 +59,15 @@ void BM_StereoMatch(benchmark::State& state) {
   cv::Mat dl, dr;
   orb.Extract(p.left, cv::Mat(), &kl, &dl);
   orb.Extract(p.right, cv::Mat(), &kr, &dr);
-  slam::StereoMatcher matcher;
+  slam::StereoMatcherOptions opt = slam::LoadSlamSettings(slam::DefaultSlamSettingsPath()).stereo;
+  if (state.range(0) == 1) {
+    opt.max_shear = 0;
+    opt.subpixel = "parabola";
+  }
+  slam::StereoMatcher matcher(opt);
   for (auto _ : state) benchmark::DoNotOptimize(matcher.Match(p.left, p.right, kl, dl, kr, dr, p.fx, p.baseline));
 }
-BENCHMARK(BM_StereoMatch)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StereoMatch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace viqu

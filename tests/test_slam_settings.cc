@@ -74,6 +74,9 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(a.stereo.scale_factor, b.stereo.scale_factor);
   EXPECT_EQ(a.stereo.sad_outlier_factor, b.stereo.sad_outlier_factor);
   EXPECT_EQ(a.stereo.sad_uniqueness, b.stereo.sad_uniqueness);
+  EXPECT_EQ(a.stereo.subpixel, b.stereo.subpixel);
+  EXPECT_EQ(a.stereo.max_shear, b.stereo.max_shear);
+  EXPECT_EQ(a.stereo.shear_step, b.stereo.shear_step);
 
   const TrackingSettings& ta = a.tracking;
   const TrackingSettings& tb = b.tracking;
@@ -175,7 +178,7 @@ int CountLeafKeys(const std::string& yaml) {
 }
 
 // The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 7 + 10 + 30 + 9 + 8 + 3 + 23 + 28;
+constexpr int kLeafKeys = 4 + 7 + 13 + 30 + 9 + 8 + 3 + 23 + 28;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -219,6 +222,9 @@ TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
   s.stereo.scale_factor = 1.3;
   s.stereo.sad_outlier_factor = 3;
   s.stereo.sad_uniqueness = 0.5;
+  s.stereo.subpixel = "parabola";
+  s.stereo.max_shear = 0.35;
+  s.stereo.shear_step = 0.05;
   s.tracking = {12.5, 3.25, 90, 0.8, 25, 15, 8, 1.5, 3, 30, 2, 0.6, 50, 35};
   s.mapping.mode = "realtime";
   s.mapping.ba_window = 7;
@@ -287,6 +293,9 @@ TEST_F(SlamSettingsTest, UnknownKeysAtTopLevelAndInEverySection) {
   EXPECT_EQ(ErrorOf("input: stereo\nloop_closing: true\n").rfind(Path() + ":2:1: unknown key 'loop_closing'", 0), 0u);
   EXPECT_EQ(ErrorOf("orb: {nfeatures: 10}\n").rfind(Path() + ":1:7: unknown key 'orb.nfeatures'", 0), 0u);
   EXPECT_EQ(ErrorOf("stereo:\n    sad_window: 3\n").rfind(Path() + ":2:5: unknown key 'stereo.sad_window'", 0), 0u);
+  EXPECT_EQ(ErrorOf("stereo:\n  subpixel: cubic\n"),
+            Path() + ":2:13: key 'stereo.subpixel' expected one of parabola, equiangular, got 'cubic'");
+  EXPECT_EQ(ErrorOf("stereo: {max_shear: -0.1}\n").rfind(Path() + ":1:21: key 'stereo.max_shear' expected a number in [0, 2], got '-0.1'", 0), 0u);
   EXPECT_EQ(ErrorOf("mapping:\n  ba_windows: 3\n").rfind(Path() + ":2:3: unknown key 'mapping.ba_windows'", 0), 0u);
   const std::string set = ErrorOf("", {"tracking.min_inlier=5"});
   EXPECT_EQ(set.rfind("--set tracking.min_inlier=5: unknown key 'tracking.min_inlier'", 0), 0u) << set;

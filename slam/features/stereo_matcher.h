@@ -5,6 +5,7 @@
 // feature's pyramid level and a parabola through the SAD minimum for sub-pixel disparity. A left
 // feature with no right keypoint at its corner is searched by SAD along the whole row range and
 // kept if the minimum is unique.
+#include <string>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -24,6 +25,16 @@ struct StereoMatcherOptions {
   double sad_outlier_factor = 2.1;  // matches whose SAD exceeds this times the median are dropped
   double sad_uniqueness = 0.7;   // a row search without a descriptor match needs its SAD minimum
                                  // below this times the best SAD more than 2 px away
+  // Sub-pixel disparity from the SAD costs at the best column and its two neighbours: "parabola"
+  // (a parabola through the three) or "equiangular" (two lines of equal and opposite slope, the
+  // shape of an SAD cost near its minimum; a parabola pulls the estimate towards whole pixels).
+  std::string subpixel = "equiangular";
+  // Slanted surfaces: the ground seen from a low camera changes disparity by about half a pixel
+  // per row, so an upright window mixes rows of different disparity. The refinement also tries
+  // windows whose rows are shifted by shear x row offset (px of disparity per row, at the level),
+  // shear in [-max_shear, max_shear] in steps of shear_step; 0 keeps the upright window only.
+  double max_shear = 0.6;
+  double shear_step = 0.2;
   bool level_pixel_centres = false;  // the extractor's mapping of level pixels (orb.level_pixel_centres)
 };
 

@@ -68,6 +68,9 @@ void ReadStereo(YamlMapReader* m, StereoMatcherOptions* s) {
   m->Number("scale_factor", &s->scale_factor, kPyramidScale);
   m->Number("sad_outlier_factor", &s->sad_outlier_factor, NumberRange::AtLeast(1));
   m->Number("sad_uniqueness", &s->sad_uniqueness, kRatio);
+  m->Choice("subpixel", &s->subpixel, {"parabola", "equiangular"});
+  m->Number("max_shear", &s->max_shear, NumberRange::Closed(0, 2));
+  m->Number("shear_step", &s->shear_step, NumberRange::OpenClosed(0, 2));
   m->RejectUnknownKeys();
 }
 
@@ -277,6 +280,9 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "scale_factor", s.stereo.scale_factor);
   EmitNumber(out, "sad_outlier_factor", s.stereo.sad_outlier_factor);
   EmitNumber(out, "sad_uniqueness", s.stereo.sad_uniqueness);
+  EmitWord(out, "subpixel", s.stereo.subpixel);
+  EmitNumber(out, "max_shear", s.stereo.max_shear);
+  EmitNumber(out, "shear_step", s.stereo.shear_step);
   out << YAML::EndMap;
 
   const TrackingSettings& t = s.tracking;
