@@ -28,12 +28,12 @@ struct StereoMatcherOptions {
   // Sub-pixel disparity from the SAD costs at the best column and its two neighbours: "parabola"
   // (a parabola through the three) or "equiangular" (two lines of equal and opposite slope, the
   // shape of an SAD cost near its minimum; a parabola pulls the estimate towards whole pixels).
-  std::string subpixel = "equiangular";
+  std::string subpixel = "parabola";
   // Slanted surfaces: the ground seen from a low camera changes disparity by about half a pixel
   // per row, so an upright window mixes rows of different disparity. The refinement also tries
   // windows whose rows are shifted by shear x row offset (px of disparity per row, at the level),
   // shear in [-max_shear, max_shear] in steps of shear_step; 0 keeps the upright window only.
-  double max_shear = 0.6;
+  double max_shear = 0;
   double shear_step = 0.2;
   bool level_pixel_centres = false;  // the extractor's mapping of level pixels (orb.level_pixel_centres)
 };
