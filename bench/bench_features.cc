@@ -50,8 +50,8 @@ void BM_OrbExtract(benchmark::State& state) {
 }
 BENCHMARK(BM_OrbExtract)->Unit(benchmark::kMillisecond);
 
-// Stereo matching with the options of slam/config/default.yaml (arg 0: what runs) and with an
-// upright window only and parabola sub-pixel (arg 1: the matcher before session 31).
+// Stereo matching with the options of slam/config/default.yaml (arg 0: what runs) and with the
+// sheared windows and equiangular sub-pixel on (arg 1: stereo.max_shear 0.6, shear_step 0.2).
 void BM_StereoMatch(benchmark::State& state) {
   const Pair& p = RoomPair();
   slam::OrbExtractor orb;
@@ -61,8 +61,9 @@ void BM_StereoMatch(benchmark::State& state) {
   orb.Extract(p.right, cv::Mat(), &kr, &dr);
   slam::StereoMatcherOptions opt = slam::LoadSlamSettings(slam::DefaultSlamSettingsPath()).stereo;
   if (state.range(0) == 1) {
-    opt.max_shear = 0;
-    opt.subpixel = "parabola";
+    opt.max_shear = 0.6;
+    opt.shear_step = 0.2;
+    opt.subpixel = "equiangular";
   }
   slam::StereoMatcher matcher(opt);
   for (auto _ : state) benchmark::DoNotOptimize(matcher.Match(p.left, p.right, kl, dl, kr, dr, p.fx, p.baseline));
