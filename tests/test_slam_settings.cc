@@ -192,6 +192,22 @@ TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   EXPECT_EQ(CountLeafKeys(text), kLeafKeys);
 }
 
+// The shipped opt-in file for the stereo matcher's accuracy options (README "Stereo defaults,
+// session 32") loads and changes exactly those keys.
+TEST_F(SlamSettingsTest, StereoGroundFileChangesOnlyTheStereoAccuracyKeys) {
+  const fs::path path = fs::path(DefaultSlamSettingsPath()).parent_path() / "stereo_ground.yaml";
+  ASSERT_TRUE(fs::is_regular_file(path)) << path;
+  const SlamSettings s = LoadSlamSettings(path.string());
+  SlamSettings expected;
+  expected.orb.level_pixel_centres = true;
+  expected.stereo.level_pixel_centres = true;  // follows orb.level_pixel_centres
+  expected.stereo.subpixel = "equiangular";
+  expected.stereo.max_shear = 0.6;
+  ExpectSameSettings(s, expected);
+  EXPECT_NE(s.stereo.subpixel, SlamSettings().stereo.subpixel);  // not already the defaults
+  EXPECT_NE(s.stereo.max_shear, SlamSettings().stereo.max_shear);
+}
+
 TEST_F(SlamSettingsTest, EmptyFileGivesDefaults) {
   const SlamSettings s = LoadSlamSettings(Write("slam.yaml", ""));
   ExpectSameSettings(s, SlamSettings());
