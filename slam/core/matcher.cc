@@ -56,6 +56,24 @@ bool PredictView(const StereoCamera& cam, const MapPoint& p, const Eigen::Isomet
   return true;
 }
 
+// Whether `keep` may take over the observations of `drop`: it must lie in front of every
+// keyframe that observes `drop` and project within `radius` (pixels of the feature's level) of
+// that keyframe's feature, as the fusion search itself asks of the keyframe it searches. Without
+// this, on a repetitive texture the search in a keyframe that has no stereo depth for the
+// feature matches a different point on the same ray, and the merge hands the other keyframes'
+// observations a point a metre away, even behind their cameras, which drags local BA.
+bool MergeIsConsistent(const StereoCamera& cam, const MapPoint& keep, const MapPoint& drop, double radius) {
+  for (const auto& [k, idx] : drop.observations) {
+    if (k->bad || keep.observations.count(k)) continue;
+    const Eigen::Vector3d pc = k->T_c_w * keep.p_w;
+    if (pc.z() <= 0) return false;
+    const FeaturePoint& kp = k->features->keypoints[idx];
+    const Eigen::Vector2d uv = cam.Project(pc);
+    if ((uv - Eigen::Vector2d(kp.pt.x, kp.pt.y)).norm() > radius * k->features->level_scale[kp.octave]) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) const {
@@ -239,11 +257,10 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
     if (b.idx < 0 || b.dist > opt_.strict_hamming) continue;
     MapPoint* other = kf->points[b.idx];
     if (other && !other->bad) {
-      if (other->observations.size() > p->observations.size()) {
-        Map::Replace(p, other);
-      } else {
-        Map::Replace(other, p);
-      }
+      MapPoint* keep = other->observations.size() > p->observations.size() ? other : p;
+      MapPoint* drop = keep == other ? p : other;
+      if (!MergeIsConsistent(cam_, *keep, *drop, radius)) continue;
+      Map::Replace(drop, keep);
     } else {
       Map::AddObservation(p, kf, b.idx);
     }
