@@ -72,6 +72,7 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   json->Set("timing.dynamic_ms_median", Median(st.dynamic_ms));
   json->Set("timing.dynamic_ms_p95", Percentile(st.dynamic_ms, 0.95));
   json->Set("tracking.object_points_erased", st.object_points_erased);
+  json->Set("tracking.object_points_retired", st.object_points_retired);
   json->Set("tracking.keyframes_freed", st.keyframes_freed);
   json->Set("tracking.map_points_freed", st.map_points_freed);
   json->Set("tracking.map_points_held", st.map_points_held);

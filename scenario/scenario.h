@@ -145,9 +145,9 @@ struct DynamicConfig {
   double alpha = 1.0, beta = 1.0, gamma = 0.5, th_d = 0.1;
   double window_s = 6;
   int window_n = 10;
-  // The other `slam.dynamic.*` keys present in the scenario (`forget_s`, `prior.<category>`,
-  // `adaptive.<key>`; path below dynamic, value as written), in file order: settings of the SLAM
-  // settings file's block dynamic for this scenario.
+  // The other `slam.dynamic.*` keys present in the scenario (`forget_s`, `keep_past_observations`,
+  // `prior.<category>`, `adaptive.<key>`; path below dynamic, value as written), in file order:
+  // settings of the SLAM settings file's block dynamic for this scenario.
   std::vector<std::pair<std::string, std::string>> more;
 };
 

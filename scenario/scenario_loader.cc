@@ -321,6 +321,10 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
     }
   };
   more(&d, "", {"forget_s"});
+  bool keep_past = true;
+  if (d.Bool("keep_past_observations", &keep_past)) {
+    s->dynamic.more.emplace_back("keep_past_observations", keep_past ? "true" : "false");
+  }
   YamlMapReader prior = d.Map("prior");
   more(&prior, "prior.", {"person", "box", "ball"});
   prior.RejectUnknownKeys();

@@ -5,8 +5,6 @@
 // different points on one ray as the same, and merging them gave a keyframe an observation of a
 // point behind its camera (standing_crowd, session 33: local BA's cost went from 2.5e3 to 3.7e6
 // and the window's keyframes moved 9-50 mm).
-#include <cmath>
-#include <memory>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -14,40 +12,13 @@
 #include "slam/core/map.h"
 #include "slam/core/matcher.h"
 #include "synthetic_camera.h"
+#include "synthetic_keyframes.h"
 
 namespace viqu::slam {
 namespace {
 
-// A keyframe at camera centre `c` (looking along the world's +z) with one monocular feature
-// where `p_w` projects, at pyramid level `level`, every feature the same descriptor.
-KeyFrame* AddKeyFrame(Map* map, const StereoCamera& cam, const Eigen::Vector3d& c, const Eigen::Vector3d& p_w, int level) {
-  auto f = std::make_shared<FrameFeatures>();
-  const Eigen::Vector2d uv = cam.Project(p_w - c);
-  f->keypoints = {FeaturePoint(cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y())), level)};
-  f->descriptors = cv::Mat(1, 32, CV_8U, cv::Scalar(0x5a));
-  f->u_right = {-1.f};
-  f->depth = {-1.f};
-  f->object = {0};
-  for (int l = 0; l < 8; ++l) {
-    f->level_scale.push_back(static_cast<float>(std::pow(1.2, l)));
-    f->level_sigma2.push_back(f->level_scale.back() * f->level_scale.back());
-  }
-  f->BuildGrid(cam.width, cam.height);
-  Frame frame;
-  frame.Reset(f);
-  frame.T_c_w = Eigen::Isometry3d(Eigen::Translation3d(-c));
-  return map->AddKeyFrame(frame);
-}
-
-MapPoint* AddPoint(Map* map, const Eigen::Vector3d& p_w, const std::vector<KeyFrame*>& observers) {
-  MapPoint* p = map->AddPoint(p_w, observers.front());
-  for (KeyFrame* kf : observers) {
-    Map::AddObservation(p, kf, 0);
-    kf->points[0] = p;
-  }
-  p->UpdateFromObservations();
-  return p;
-}
+using testing::AddKeyFrame;
+using testing::AddPoint;
 
 // Keyframe A at the origin sees point Q 1 m ahead (so does C, 0.2 m to its side). A point P made
 // by another keyframe lies on A's ray through Q, projects onto Q's feature in A and carries the

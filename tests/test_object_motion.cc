@@ -140,6 +140,38 @@ TEST(ObjectMotion, ATentativeDecisionDropsAtTheFirstMotionAndWaitsForTheConfirma
   }
 }
 
+// The confirmation dates the motion: the map points keep the observations of keyframes before
+// that date, so by then the object may have moved no more than the test can tell from standing
+// (its threshold; half as much again for the noise), and the date is no earlier than one lag
+// before the onset (the looks reach back at most lag_s). The walker at 0.8 m/s is dated to its
+// onset's frame; the crate at 0.1 m/s needs 0.2 s to move the threshold. Both from frame 20.
+TEST(ObjectMotion, TheConfirmationDatesTheOnsetToTheTestsThreshold) {
+  const AdaptiveDynamicSettings s;  // lag 1 s
+  const int64_t lag_ns = static_cast<int64_t>(s.lag_s * 1e9);
+  for (double speed : {0.8, 0.1}) {
+    for (uint64_t seed = 61; seed < 64; ++seed) {
+      SyntheticObject obj(40, seed);
+      ObjectMotionTrack track;
+      const int64_t start_ns = 20 * kFrameNs;
+      int k = 0;
+      for (; k < 100 && !track.confirmed(); ++k) {
+        const Eigen::Vector3d offset(speed * std::max(0, k - 20) * kFrameNs * 1e-9, 0, 0);
+        track.Add(obj.Observe(k * kFrameNs, offset, 0.5, 0.5), s);
+        if (!track.confirmed()) {
+          EXPECT_EQ(track.motion_onset_ns(), 0) << speed << " seed " << seed << " frame " << k;
+        }
+      }
+      ASSERT_TRUE(track.confirmed()) << speed << " seed " << seed;
+      const double moved_m = speed * std::max<int64_t>(0, track.motion_onset_ns() - start_ns) * 1e-9;
+      EXPECT_LE(moved_m, 1.5 * s.threshold_m) << speed << " seed " << seed;
+      if (speed == 0.8) {
+        EXPECT_EQ(track.motion_onset_ns(), start_ns) << "seed " << seed;
+      }
+      EXPECT_GE(track.motion_onset_ns(), start_ns - lag_ns) << speed << " seed " << seed;
+    }
+  }
+}
+
 TEST(ObjectMotion, SlowBoxWithinHalfASecond) {
   const int frames = FramesToDetect({0.1, 0, 0}, 20, 100, 4);  // 0.1 m/s, the pushed crate
   EXPECT_GE(frames, 1);

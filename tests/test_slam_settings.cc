@@ -132,6 +132,7 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(da.window_s, db.window_s);
   EXPECT_EQ(da.window_n, db.window_n);
   EXPECT_EQ(da.forget_s, db.forget_s);
+  EXPECT_EQ(da.keep_past_observations, db.keep_past_observations);
   EXPECT_EQ(da.prior.person, db.prior.person);
   EXPECT_EQ(da.prior.box, db.prior.box);
   EXPECT_EQ(da.prior.ball, db.prior.ball);
@@ -177,8 +178,8 @@ int CountLeafKeys(const std::string& yaml) {
   return n;
 }
 
-// The number of fields of SlamSettings that are keys (all but source_file).
-constexpr int kLeafKeys = 4 + 7 + 13 + 30 + 9 + 8 + 3 + 23 + 28;
+// The number of fields of SlamSettings that are keys (all but source_file); dynamic: 9 + 3 priors + 23 adaptive.
+constexpr int kLeafKeys = 4 + 7 + 13 + 30 + 9 + 9 + 3 + 23 + 28;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -260,6 +261,7 @@ TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
   s.dynamic.window_s = 1.5;
   s.dynamic.window_n = 12;
   s.dynamic.forget_s = 3;
+  s.dynamic.keep_past_observations = false;
   s.dynamic.prior = {0.9, 0.1, 0.4};
   s.dynamic.adaptive = {0.8, 0.03, 2.5, 0.7, 0.4, 2.5, 0.15, 0.7, 3, 2, 8, 4, 0.25, 40, 0.3, 0, 0.02, 3, 0.01, 0.2, 12, 1.5, 0.4};
   s.source_file = "/some/where.yaml";

@@ -246,4 +246,10 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
   return turned;
 }
 
+int64_t DynamicObjects::MotionOnsetNs(uint16_t id) const {
+  if (method_ != DynamicMethod::kAdaptive) return 0;
+  const auto it = objects_.find(id);
+  return it == objects_.end() ? 0 : it->second.motion.motion_onset_ns();
+}
+
 }  // namespace viqu::slam

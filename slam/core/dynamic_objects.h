@@ -78,6 +78,9 @@ class DynamicObjects {
   // The ids whose dynamic decision was confirmed with the last Update (their map points go; a
   // tentative decision keeps them). Semantic and paper decisions are confirmed when made.
   const std::vector<uint16_t>& JustConfirmed() const { return just_confirmed_; }
+  // For an object of JustConfirmed(): the earliest its motion can have begun (ns; adaptive,
+  // ObjectMotionTrack::motion_onset_ns). Semantic and paper decisions do not date the motion: 0.
+  int64_t MotionOnsetNs(uint16_t id) const;
 
   // The reports of the current frame, in id order.
   const std::vector<ObjectReport>& reports() const { return reports_; }

@@ -133,7 +133,7 @@ void LocalMapper::LinkObservations(KeyFrame* kf) {
   for (size_t i = 0; i < kf->points.size(); ++i) {
     MapPoint* p = kf->points[i];
     if (!p) continue;
-    if (p->bad) {
+    if (!p->Matchable()) {
       kf->points[i] = nullptr;
       continue;
     }
@@ -152,7 +152,8 @@ void LocalMapper::CullRecentPoints(KeyFrame* kf) {
   for (auto it = recent_.begin(); it != recent_.end();) {
     MapPoint* p = *it;
     const int64_t age = kf->id - p->first_keyframe_id;
-    if (p->bad) {
+    if (!p->Matchable()) {
+      // A retired point is no longer searched for, so its found ratio says nothing now.
       it = recent_.erase(it);
     } else if (p->FoundRatio() < settings_.mapping.culling_found_ratio) {
       Map::ErasePoint(p);
@@ -240,14 +241,14 @@ void LocalMapper::FuseWithNeighbours(KeyFrame* kf) {
   }
   std::vector<MapPoint*> own;
   for (MapPoint* p : kf->points) {
-    if (p && !p->bad) own.push_back(p);
+    if (p && p->Matchable()) own.push_back(p);
   }
   for (KeyFrame* t : targets) matcher_.Fuse(t, own, 3.0);
   std::vector<MapPoint*> theirs;
   std::set<MapPoint*> theirs_set;
   for (KeyFrame* t : targets) {
     for (MapPoint* p : t->points) {
-      if (p && !p->bad && theirs_set.insert(p).second) theirs.push_back(p);
+      if (p && p->Matchable() && theirs_set.insert(p).second) theirs.push_back(p);
     }
   }
   std::sort(theirs.begin(), theirs.end(), [](const MapPoint* a, const MapPoint* b) { return a->id < b->id; });

@@ -157,6 +157,30 @@ int Map::EraseObjectPoints(uint16_t object) {
   return n;
 }
 
+int Map::RetireObjectPoints(uint16_t object, int64_t moving_from_ns, int* retired) {
+  int erased = 0, kept = 0;
+  std::vector<KeyFrame*> late;
+  for (const auto& p : points_) {
+    if (!p->Matchable() || p->object != object || object == 0) continue;
+    late.clear();
+    for (const auto& [kf, idx] : p->observations) {
+      if (kf->t_ns >= moving_from_ns) late.push_back(kf);
+    }
+    for (KeyFrame* kf : late) EraseObservation(p.get(), kf);
+    // One keyframe's observation alone ties nothing together: the point would only follow it.
+    if (p->observations.size() < 2) {
+      if (!p->bad) ErasePoint(p.get());
+      ++erased;
+      continue;
+    }
+    p->retired = true;
+    p->UpdateFromObservations();
+    ++kept;
+  }
+  if (retired) *retired = kept;
+  return erased;
+}
+
 void Map::ErasePoint(MapPoint* p) {
   p->bad = true;
   for (const auto& [kf, idx] : p->observations) {

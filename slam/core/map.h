@@ -99,6 +99,12 @@ class MapPoint {
   int64_t first_keyframe_id = 0;
   uint16_t object = 0;                     // segmentation instance of the feature that created it (0 = none)
   bool bad = false;
+  // A point of an object that has since moved (Map::RetireObjectPoints): it keeps the observations
+  // of the keyframes taken while the object stood there, which BA still uses, and is never matched,
+  // fused or observed again.
+  bool retired = false;
+  // Whether tracking and fusion may match it: neither bad nor retired.
+  bool Matchable() const { return !bad && !retired; }
   // The tracker's own bookkeeping (read and written by the tracking thread only): the index of
   // the last frame whose local map took this point, so that gathering the local map needs no
   // set of pointers (thousands of tree nodes a frame, which fragmented the heap over long runs).
@@ -152,6 +158,11 @@ class Map {
   // Erases every good point created from a feature on segmentation instance `object` (> 0);
   // returns how many.
   int EraseObjectPoints(uint16_t object);
+  // For an object that moved from `moving_from_ns` on (>= the first observation: same as
+  // EraseObjectPoints): each of its good points loses the observations of keyframes taken from
+  // then on and is retired (MapPoint::retired) if two or more are left, else erased. Returns the
+  // number erased; `*retired` (may be null) gets the number retired.
+  int RetireObjectPoints(uint16_t object, int64_t moving_from_ns, int* retired);
   // Replaces `a` by `b` everywhere (duplicate fusion); `a` becomes bad.
   static void Replace(MapPoint* a, MapPoint* b);
   // Flags the keyframe bad, drops its observations and reconnects its neighbours.

@@ -82,7 +82,7 @@ int Matcher::SearchByProjection(const Frame& last, double radius, Frame* cur) co
   std::vector<int> cand;
   for (size_t i = 0; i < last.size(); ++i) {
     MapPoint* p = last.points[i];
-    if (!p || p->bad || last.outlier[i]) continue;
+    if (!p || !p->Matchable() || last.outlier[i]) continue;
     const Eigen::Vector3d pc = cur->T_c_w * p->p_w;
     if (pc.z() <= 0) continue;
     const Eigen::Vector2d uv = cam_.Project(pc);
@@ -120,7 +120,7 @@ int Matcher::SearchLocalPoints(const std::vector<MapPoint*>& points, double radi
   int matches = 0;
   std::vector<int> cand;
   for (MapPoint* p : points) {
-    if (p->bad || std::binary_search(already.begin(), already.end(), p)) continue;
+    if (!p->Matchable() || std::binary_search(already.begin(), already.end(), p)) continue;
     View v;
     if (!PredictView(cam_, *p, cur->T_c_w, center, f, &v)) continue;
     if (count_visible) ++p->visible;
@@ -152,7 +152,7 @@ int Matcher::SearchByDescriptor(const KeyFrame& kf, Frame* cur) const {
   std::vector<MapPoint*> chosen(f.size(), nullptr);
   for (size_t i = 0; i < kf.points.size(); ++i) {
     MapPoint* p = kf.points[i];
-    if (!p || p->bad) continue;
+    if (!p || !p->Matchable()) continue;
     const uint8_t* d = kf.features->descriptors.ptr<uint8_t>(static_cast<int>(i));
     Best b;
     for (size_t j = 0; j < f.size(); ++j) {
@@ -241,7 +241,7 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
   int fused = 0;
   std::vector<int> cand;
   for (MapPoint* p : points) {
-    if (!p || p->bad || p->observations.count(kf)) continue;
+    if (!p || !p->Matchable() || p->observations.count(kf)) continue;
     View v;
     if (!PredictView(cam_, *p, kf->T_c_w, center, f, &v)) continue;
     const Eigen::Vector3d& pc = v.p_c;
@@ -256,6 +256,7 @@ int Matcher::Fuse(KeyFrame* kf, const std::vector<MapPoint*>& points, double rad
     }
     if (b.idx < 0 || b.dist > opt_.strict_hamming) continue;
     MapPoint* other = kf->points[b.idx];
+    if (other && other->retired) continue;  // the feature already holds a point of the past
     if (other && !other->bad) {
       MapPoint* keep = other->observations.size() > p->observations.size() ? other : p;
       MapPoint* drop = keep == other ? p : other;

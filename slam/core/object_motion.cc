@@ -215,8 +215,10 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   // the object; confirming by the mask made the standing_crowd run's keyframes fall on a trot's
   // jolt, which then tracked 65 mm off (README, session 22).
   const bool confirms = !last_.by_silhouette;
+  if (last_.moving) run_start_ns_ = consecutive_moving_ == 1 ? ref_ns : std::min(run_start_ns_, ref_ns);
   if (changed_look ||
       (last_.moving && (dynamic_ || recently_dynamic || (confirms && consecutive_moving_ >= s.confirm_frames)))) {
+    if (!dynamic_) motion_onset_ns_ = std::max(last_unmoved_ns_, changed_look && !last_.moving ? t_ns - lag_ns : run_start_ns_);
     last_motion_ns_ = t_ns;
     last_motion_ref_ns_ = ref_ns;
     moved_ = true;
@@ -235,6 +237,7 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   }
   // Released only after hold_s and a judgement that it stands still: an object that moved and
   // then cannot be judged (too few matches, too far for stereo to rule motion out) stays dynamic.
+  if (last_.judged && !last_.moving) last_unmoved_ns_ = t_ns;
   const bool was_dynamic = dynamic_;
   dynamic_ = moved_ && (t_ns - last_motion_ns_ <= static_cast<int64_t>(s.hold_s * 1e9) || !static_since_motion_);
   if (was_dynamic && !dynamic_) released_ns_ = t_ns;

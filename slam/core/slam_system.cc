@@ -159,10 +159,19 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
       }
     }
     // Only a confirmed decision culls the object's map points: a tentative one may be a single
-    // mismatched look of an object that stands.
+    // mismatched look of an object that stands. What its points saw before it can have started
+    // to move stays for BA (dynamic.keep_past_observations).
     if (!m.dynamic->JustConfirmed().empty()) {
       std::lock_guard<std::mutex> lock(m.map.mutex);
-      for (uint16_t id : m.dynamic->JustConfirmed()) m.stats.object_points_erased += m.map.EraseObjectPoints(id);
+      for (uint16_t id : m.dynamic->JustConfirmed()) {
+        if (m.settings.dynamic.keep_past_observations) {
+          int retired = 0;
+          m.stats.object_points_erased += m.map.RetireObjectPoints(id, m.dynamic->MotionOnsetNs(id), &retired);
+          m.stats.object_points_retired += retired;
+        } else {
+          m.stats.object_points_erased += m.map.EraseObjectPoints(id);
+        }
+      }
     }
   }
   dynamic_ms += ms_since(td);

@@ -73,6 +73,8 @@ struct SlamStats {
   std::vector<double> local_ba_ms;  // per local BA (ms)
   std::vector<double> dynamic_ms;   // per frame (ms)
   int object_points_erased = 0;     // map points culled because their object turned dynamic
+  int object_points_retired = 0;    // map points of such objects kept for BA with their earlier
+                                    // observations (dynamic.keep_past_observations), never matched again
   int64_t keyframes_freed = 0;      // culled keyframes freed (Map::Reclaim)
   int64_t map_points_freed = 0;     // culled map points freed
   int64_t keyframes_held = 0;       // keyframes allocated now (good, and culled but still held)

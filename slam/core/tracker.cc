@@ -168,7 +168,7 @@ int Tracker::RestoreOutliersOutside(const std::vector<bool>& excluded_instance, 
   int restored = 0;
   for (size_t i = 0; i < f->size(); ++i) {
     MapPoint* p = last_outliers_[i];
-    if (!p || p->bad || f->points[i]) continue;
+    if (!p || !p->Matchable() || f->points[i]) continue;
     const uint16_t id = f->features->object[i];
     if (id < excluded_instance.size() && excluded_instance[id]) continue;
     f->points[i] = p;
@@ -623,7 +623,7 @@ int Tracker::TrackLocalMap(int* map_inliers) {
   local_points_.clear();
   for (KeyFrame* kf : local) {
     for (MapPoint* p : kf->points) {
-      if (p && !p->bad && p->local_map_frame != frame_index_) {
+      if (p && p->Matchable() && p->local_map_frame != frame_index_) {
         p->local_map_frame = frame_index_;
         local_points_.push_back(p);
       }

@@ -137,6 +137,7 @@ void ReadDynamic(YamlMapReader* m, DynamicSettings* d) {
   m->Number("window_s", &d->window_s, NumberRange::OpenClosed(0, 600));
   m->Integer("window_n", &d->window_n, NumberRange::Closed(2, 10000));
   m->Number("forget_s", &d->forget_s, NumberRange::OpenClosed(0, 600));
+  m->Bool("keep_past_observations", &d->keep_past_observations);
   YamlMapReader prior = m->Map("prior");
   prior.Number("person", &d->prior.person, NumberRange::Closed(0, 1));
   prior.Number("box", &d->prior.box, NumberRange::Closed(0, 1));
@@ -342,6 +343,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "window_s", d.window_s);
   EmitInt(out, "window_n", d.window_n);
   EmitNumber(out, "forget_s", d.forget_s);
+  EmitBool(out, "keep_past_observations", d.keep_past_observations);
   out << YAML::Key << "prior" << YAML::Value << YAML::BeginMap;
   EmitNumber(out, "person", d.prior.person);
   EmitNumber(out, "box", d.prior.box);

@@ -129,6 +129,10 @@ struct DynamicSettings {
   CategoryPriors prior;
   AdaptiveDynamicSettings adaptive;
   double forget_s = 2.0;             // an object unseen this long starts a new history (s)
+  // When an object is confirmed dynamic, its map points keep the observations of keyframes taken
+  // before its motion can have begun (it stood there then, so they still tie those keyframes
+  // together in BA) and are never matched again; false: they are erased with all observations.
+  bool keep_past_observations = true;
 };
 
 // Leg odometry + IMU Kalman filter (paper eqs. 5-7), run in mode full. slam/lo/leg_odometry.h
