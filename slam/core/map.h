@@ -140,6 +140,7 @@ class KeyFrame {
   std::vector<KeyFrame*> BestCovisible(size_t n) const;
   // Recomputes `covisible` from the map points' observations and updates the neighbours' lists.
   void UpdateConnections(int min_shared);
+  // Its points that tracking can still match (not retired) with at least this observation weight.
   int TrackedPoints(int min_observations) const;
 };
 

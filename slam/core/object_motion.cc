@@ -237,7 +237,7 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   }
   // Released only after hold_s and a judgement that it stands still: an object that moved and
   // then cannot be judged (too few matches, too far for stereo to rule motion out) stays dynamic.
-  if (last_.judged && !last_.moving) last_unmoved_ns_ = t_ns;
+  if (last_.still && last_.displacement_m < s.stop_max_m) last_unmoved_ns_ = t_ns;
   const bool was_dynamic = dynamic_;
   dynamic_ = moved_ && (t_ns - last_motion_ns_ <= static_cast<int64_t>(s.hold_s * 1e9) || !static_since_motion_);
   if (was_dynamic && !dynamic_) released_ns_ = t_ns;

@@ -99,10 +99,11 @@ class ObjectMotionTrack {
            const StereoCamera* cam = nullptr);
   // Dynamic by a confirmed judgement (not merely tentatively).
   bool confirmed() const { return dynamic_; }
-  // The earliest its latest motion can have begun (ns), to the test's threshold: the later of the
-  // start of the first look in the run of looks of motion that made it dynamic (a look compares
-  // with a snapshot up to lag_s earlier: the object stood where that snapshot saw it until then)
-  // and the end of the last judged look before that run that saw no motion. 0 before any.
+  // The earliest its latest motion can have begun (ns): the later of the start of the first look
+  // in the run of looks of motion that made it dynamic (a look compares with a snapshot up to
+  // lag_s earlier: the object stood where that snapshot saw it until then) and the end of the last
+  // look before that run judged still with a median displacement under stop_max_m (it stood
+  // within a centimetre until then). 0 before any.
   int64_t motion_onset_ns() const { return motion_onset_ns_; }
   const MotionMeasurement& last() const { return last_; }
   // Forgets the snapshots (not the decision, its hold or the time of the last motion): after the
@@ -127,7 +128,7 @@ class ObjectMotionTrack {
   int64_t released_ns_ = -1;         // when it last turned from dynamic to static (-1: never)
   int consecutive_moving_ = 0;       // judgements of motion in a row
   int64_t run_start_ns_ = 0;         // start of the first look of that run
-  int64_t last_unmoved_ns_ = 0;      // end of the last judged look that saw no motion
+  int64_t last_unmoved_ns_ = 0;      // end of the last look judged still within stop_max_m
   int64_t motion_onset_ns_ = 0;      // see motion_onset_ns()
   int unjudged_after_release_ = 0;   // looks in a row within hold_s of the release that could not be judged
   bool moved_ = false;
