@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/core/dynamic_objects.h"
 #include "slam/core/map.h"
 #include "slam/core/matcher.h"
 #include "synthetic_camera.h"
@@ -23,7 +24,7 @@ using testing::MakeFrame;
 
 constexpr int64_t kSecond = 1'000'000'000;
 
-// Keyframes every `spacing` m along x at the given times, each seeing `p_w`.
+// Keyframes 5 cm apart along x from `x0`, taken at the given times, each seeing `p_w`.
 std::vector<KeyFrame*> KeyFramesSeeing(Map* map, const StereoCamera& cam, const Eigen::Vector3d& p_w,
                                        const std::vector<double>& times_s, double x0) {
   std::vector<KeyFrame*> out;
@@ -80,7 +81,8 @@ TEST(MapRetire, AnOnsetBeforeEveryObservationErasesThePointsAsBefore) {
   MapPoint* p = AddPoint(&map, {0, 0, 1}, kp);
   p->object = 4;
   int retired = -1;
-  EXPECT_EQ(map.RetireObjectPoints(4, 0, &retired), 1);  // semantic and paper: onset unknown (0)
+  // Semantic and paper decisions, and dynamic.keep_past_observations false.
+  EXPECT_EQ(map.RetireObjectPoints(4, kUndatedMotion, &retired), 1);
   EXPECT_EQ(retired, 0);
   EXPECT_TRUE(p->bad);
   for (KeyFrame* kf : kp) EXPECT_EQ(kf->points[0], nullptr);

@@ -247,9 +247,9 @@ std::vector<uint16_t> DynamicObjects::Update(int64_t t_ns, const FrameFeatures& 
 }
 
 int64_t DynamicObjects::MotionOnsetNs(uint16_t id) const {
-  if (method_ != DynamicMethod::kAdaptive) return 0;
+  if (method_ != DynamicMethod::kAdaptive) return kUndatedMotion;
   const auto it = objects_.find(id);
-  return it == objects_.end() ? 0 : it->second.motion.motion_onset_ns();
+  return it == objects_.end() ? kUndatedMotion : it->second.motion.motion_onset_ns();
 }
 
 }  // namespace viqu::slam

@@ -10,6 +10,7 @@
 // An object keeps its history through missed detections; unseen for `forget_s` it starts anew.
 // Furniture is static by category; background and the robot's own body are never judged.
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -27,6 +28,8 @@
 namespace viqu::slam {
 
 enum class DynamicMethod { kNone, kSemantic, kPaper, kAdaptive };
+// A motion onset before any time: an object whose motion is not dated loses every observation.
+constexpr int64_t kUndatedMotion = std::numeric_limits<int64_t>::min();
 // From the settings' mode and dynamic.method (mode visual: kNone).
 DynamicMethod DynamicMethodOf(const SlamSettings& s);
 // Person, box, ball: the categories a detector reports as possibly moving.
@@ -79,7 +82,8 @@ class DynamicObjects {
   // tentative decision keeps them). Semantic and paper decisions are confirmed when made.
   const std::vector<uint16_t>& JustConfirmed() const { return just_confirmed_; }
   // For an object of JustConfirmed(): the earliest its motion can have begun (ns; adaptive,
-  // ObjectMotionTrack::motion_onset_ns). Semantic and paper decisions do not date the motion: 0.
+  // ObjectMotionTrack::motion_onset_ns). Semantic and paper decisions do not date the motion:
+  // kUndatedMotion.
   int64_t MotionOnsetNs(uint16_t id) const;
 
   // The reports of the current frame, in id order.

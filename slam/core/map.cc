@@ -147,16 +147,6 @@ void Map::EraseObservation(MapPoint* p, KeyFrame* kf) {
   if (p->observations.empty()) p->bad = true;
 }
 
-int Map::EraseObjectPoints(uint16_t object) {
-  int n = 0;
-  for (const auto& p : points_) {
-    if (p->bad || p->object != object || object == 0) continue;
-    ErasePoint(p.get());
-    ++n;
-  }
-  return n;
-}
-
 int Map::RetireObjectPoints(uint16_t object, int64_t moving_from_ns, int* retired) {
   int erased = 0, kept = 0;
   std::vector<KeyFrame*> late;

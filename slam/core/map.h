@@ -156,13 +156,11 @@ class Map {
   static void EraseObservation(MapPoint* p, KeyFrame* kf);
   // Flags the point bad and removes it from every keyframe.
   static void ErasePoint(MapPoint* p);
-  // Erases every good point created from a feature on segmentation instance `object` (> 0);
-  // returns how many.
-  int EraseObjectPoints(uint16_t object);
-  // For an object that moved from `moving_from_ns` on (>= the first observation: same as
-  // EraseObjectPoints): each of its good points loses the observations of keyframes taken from
-  // then on and is retired (MapPoint::retired) if two or more are left, else erased. Returns the
-  // number erased; `*retired` (may be null) gets the number retired.
+  // For segmentation instance `object` (> 0), which moved from `moving_from_ns` on: each good
+  // point created from a feature on it loses the observations of keyframes taken from then on
+  // and is retired (MapPoint::retired) if two or more are left, else erased (an onset before
+  // every observation erases them all). Returns the number erased; `*retired` (may be null)
+  // gets the number retired.
   int RetireObjectPoints(uint16_t object, int64_t moving_from_ns, int* retired);
   // Replaces `a` by `b` everywhere (duplicate fusion); `a` becomes bad.
   static void Replace(MapPoint* a, MapPoint* b);

@@ -164,13 +164,10 @@ TrackResult SlamSystem::Track(const StereoFrame& frame) {
     if (!m.dynamic->JustConfirmed().empty()) {
       std::lock_guard<std::mutex> lock(m.map.mutex);
       for (uint16_t id : m.dynamic->JustConfirmed()) {
-        if (m.settings.dynamic.keep_past_observations) {
-          int retired = 0;
-          m.stats.object_points_erased += m.map.RetireObjectPoints(id, m.dynamic->MotionOnsetNs(id), &retired);
-          m.stats.object_points_retired += retired;
-        } else {
-          m.stats.object_points_erased += m.map.EraseObjectPoints(id);
-        }
+        const int64_t onset_ns = m.settings.dynamic.keep_past_observations ? m.dynamic->MotionOnsetNs(id) : kUndatedMotion;
+        int retired = 0;
+        m.stats.object_points_erased += m.map.RetireObjectPoints(id, onset_ns, &retired);
+        m.stats.object_points_retired += retired;
       }
     }
   }
