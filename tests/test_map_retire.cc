@@ -62,6 +62,10 @@ TEST(MapRetire, KeepsTheObservationsFromBeforeTheOnsetAndErasesAPointLeftWithOne
   EXPECT_EQ(kp[1]->points[0], p);
   EXPECT_EQ(kp[2]->points[0], nullptr);
   EXPECT_EQ(kp[3]->points[0], nullptr);
+  // The keyframe decision still counts the retired point among its keyframes' points, so that the
+  // tracked share falls and a new keyframe comes sooner (KeyFrame::TrackedPoints).
+  EXPECT_EQ(kp[0]->TrackedPoints(2), 1);
+  EXPECT_EQ(kp[0]->TrackedPoints(3), 0);
   EXPECT_TRUE(q->bad);  // one observation (1.2 s) left: erased
   for (KeyFrame* kf : kq) EXPECT_EQ(kf->points[0], nullptr);
   EXPECT_TRUE(s->Matchable());  // another object's point is untouched

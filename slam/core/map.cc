@@ -118,7 +118,7 @@ void KeyFrame::UpdateConnections(int min_shared) {
 int KeyFrame::TrackedPoints(int min_observations) const {
   int n = 0;
   for (MapPoint* p : points) {
-    if (p && p->Matchable() && p->ObservationWeight() >= min_observations) ++n;
+    if (p && !p->bad && p->ObservationWeight() >= min_observations) ++n;
   }
   return n;
 }

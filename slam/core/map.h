@@ -140,7 +140,10 @@ class KeyFrame {
   std::vector<KeyFrame*> BestCovisible(size_t n) const;
   // Recomputes `covisible` from the map points' observations and updates the neighbours' lists.
   void UpdateConnections(int min_shared);
-  // Its points that tracking can still match (not retired) with at least this observation weight.
+  // Its good points with at least this observation weight, retired ones included: when a moving
+  // object's points are retired the tracked share of the reference keyframe falls and a keyframe
+  // comes sooner, with new points on what is still static. (Leaving them out was measured worse:
+  // standing_people `visual_dynamic`, seeds 1-9, 3.82 mm against 3.30; README, session 35.)
   int TrackedPoints(int min_observations) const;
 };
 
