@@ -96,6 +96,7 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   if (fusion_) {
     json->Set("lo.fusion_corrections", fusion_->corrections());
     json->Set("lo.frames_carried", fusion_->frames_carried());
+    json->Set("lo.levellings", fusion_->levellings());
   }
   if (gt.empty()) return s;
   // The trajectory is kept whatever happens here; the metrics say why an ATE is missing.

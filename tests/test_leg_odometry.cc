@@ -12,6 +12,7 @@
 #include "runner/slip_score.h"
 #include "kinematics/leg_kinematics.h"
 #include "slam/lo/attitude_filter.h"
+#include "slam/lo/gravity_tilt.h"
 #include "slam/lo/leg_imu_kf.h"
 #include "slam/lo/leg_odometry.h"
 #include "slam/lo/yaw_bias_from_feet.h"
@@ -791,6 +792,123 @@ TEST_F(SyntheticStance, StancePairsFindTheGyroBiasAboutTheVertical) {
   // Measured 0.71 deg and 2.86 mrad/s with the default.
   EXPECT_LT(std::abs(yaw_default), 0.4 * std::abs(yaw_off));
   EXPECT_NEAR(bias_default, 0.003, 0.0005);
+}
+
+// GravityTilt: the mean specific force over its window, turned into the current body frame by the
+// gyro. A trunk rolling at a steady 0.1 rad/s (11.5 deg over the 2 s window) at rest otherwise:
+// each sample's force is gravity in that sample's own body frame, so only a correct turn by the
+// gyro brings them together; the true orientation then needs no levelling, and one tilted by
+// 3 deg about the world's y needs exactly -3 deg about y.
+TEST(GravityTilt, TheGyroTurnedMeanForceFindsUp) {
+  lo::GravityTilt g(2.0);
+  const auto R_at = [](double t) { return Eigen::AngleAxisd(0.1 * t, Eigen::Vector3d::UnitX()).toRotationMatrix(); };
+  for (int k = 0; k <= 200 * 3; ++k) {
+    const double t = k * 0.005;
+    g.Add(k * 5'000'000LL, Eigen::Vector3d(0.1, 0, 0), R_at(t).transpose() * Eigen::Vector3d(0, 0, 9.81));
+    if (t < 1.99) {
+      EXPECT_FALSE(g.LevellingOf(R_at(t)).has_value()) << "before a whole window, at " << t << " s";
+    }
+  }
+  const Eigen::Matrix3d R = R_at(3.0);
+  const std::optional<Eigen::Vector3d> none = g.LevellingOf(R);
+  ASSERT_TRUE(none.has_value());
+  EXPECT_LT(none->norm(), 1e-6);
+  const double tilt = 3 * M_PI / 180;
+  const std::optional<Eigen::Vector3d> back = g.LevellingOf(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitY()) * R);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_NEAR(back->x(), 0, 1e-6);
+  EXPECT_NEAR(back->y(), -tilt, 1e-6);
+  EXPECT_NEAR(back->z(), 0, 1e-9);
+  // Turned without the gyro (the rates left out), the samples would disagree by up to 11.5 deg:
+  // the turn is what makes the mean right.
+  lo::GravityTilt unturned(2.0);
+  for (int k = 0; k <= 200 * 3; ++k) {
+    unturned.Add(k * 5'000'000LL, Eigen::Vector3d::Zero(), R_at(k * 0.005).transpose() * Eigen::Vector3d(0, 0, 9.81));
+  }
+  EXPECT_GT(unturned.LevellingOf(R)->norm(), 4 * M_PI / 180);
+}
+
+// The gait's correlated fore-aft and vertical accelerations (2 m/s^2 at 3 Hz, in phase, as in
+// AveragingTheSpecificForceRemovesTheGaitsLean) lean each sample's normalised direction by about
+// 1.2 deg on average; the mean of the raw force over whole periods does not lean.
+TEST(GravityTilt, TheMeanForceDoesNotLeanWithTheGait) {
+  lo::GravityTilt g(2.0);
+  for (int k = 0; k <= 200 * 5; ++k) {
+    const double a = 2.0 * std::sin(2 * M_PI * 3.0 * k * 0.005);
+    g.Add(k * 5'000'000LL, Eigen::Vector3d::Zero(), Eigen::Vector3d(a, 0, 9.81 + a));
+  }
+  const std::optional<Eigen::Vector3d> level = g.LevellingOf(Eigen::Matrix3d::Identity());
+  ASSERT_TRUE(level.has_value());
+  std::printf("shaken level trunk: the mean force's tilt %.4f deg\n", level->norm() * 180 / M_PI);
+  EXPECT_LT(level->norm(), 0.05 * M_PI / 180);
+  g.Reset();
+  EXPECT_FALSE(g.MeanForceBody().has_value());
+}
+
+// The tilt gates of slam.mode full (lo.fusion_tilt_gate_deg 2.5, fusion_tilt_carry_gate_deg 1): a
+// robot standing level, its IMU at rest. A visual orientation 5 deg off in roll is levelled (and
+// its yaw kept); one 1.5 deg off passes as it is; the filter's own orientation, started 1.5 deg
+// off with its gravity correction off, is levelled by KeepLevel (the carry gate) once a window
+// of force has been seen, and not before.
+TEST_F(SyntheticStance, TheTiltGateLevelsAnOrientationFarFromGravity) {
+  slam::LegOdometrySettings s;
+  s.attitude_gain = 0;
+  s.gyro_bias_gain = 0;
+  const auto feed = [](lo::LegOdometry* lo, int from, int to) {
+    for (int k = from; k <= to; ++k) {
+      ImuSample imu;
+      imu.t_ns = k * 5'000'000LL;
+      imu.accel_i = Eigen::Vector3d(0, 0, 9.81);
+      imu.gyro_i.setZero();
+      lo->AddImu(imu);
+    }
+  };
+  const auto tilt_deg = [](const Eigen::Matrix3d& R) {
+    return std::acos(std::min(1.0, (R * Eigen::Vector3d::UnitZ()).z())) * 180 / M_PI;
+  };
+  const auto yaw_deg = [](const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)) * 180 / M_PI; };
+  const Eigen::Matrix3d yawed = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const auto pose = [&](double roll_deg) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(roll_deg * M_PI / 180, Eigen::Vector3d::UnitX()) * yawed;
+    T.translation() = Eigen::Vector3d(1, 2, 0.075);
+    return T;
+  };
+  {
+    lo::LegOdometry lo(s, kin_);
+    lo.Start(0, Eigen::Translation3d(0, 0, 0.075) * Eigen::Isometry3d::Identity());
+    feed(&lo, 0, 100);  // 0.5 s: no whole window yet, so nothing is levelled
+    EXPECT_FALSE(lo.CorrectPose(pose(5)));
+    EXPECT_NEAR(tilt_deg(lo.T_w_body().linear()), 5, 1e-6);
+    feed(&lo, 101, 500);
+    EXPECT_TRUE(lo.CorrectPose(pose(5)));
+    EXPECT_LT(tilt_deg(lo.T_w_body().linear()), 1e-6);
+    EXPECT_NEAR(yaw_deg(lo.T_w_body().linear()), 0.7 * 180 / M_PI, 0.01);
+    EXPECT_TRUE((lo.T_w_body().translation() - Eigen::Vector3d(1, 2, 0.075)).norm() < 1e-12);
+    EXPECT_FALSE(lo.CorrectPose(pose(1.5)));
+    EXPECT_NEAR(tilt_deg(lo.T_w_body().linear()), 1.5, 1e-6);
+    EXPECT_EQ(lo.levellings(), 1);
+  }
+  {
+    Eigen::Isometry3d start = pose(1.5);
+    lo::LegOdometry lo(s, kin_);
+    lo.Start(0, start);
+    feed(&lo, 0, 100);
+    EXPECT_FALSE(lo.KeepLevel());
+    feed(&lo, 101, 500);
+    EXPECT_TRUE(lo.KeepLevel());
+    EXPECT_LT(tilt_deg(lo.T_w_body().linear()), 1e-6);
+    EXPECT_FALSE(lo.KeepLevel());
+  }
+  {
+    slam::LegOdometrySettings off = s;
+    off.fusion_tilt_gate_deg = 0;
+    lo::LegOdometry lo(off, kin_);
+    lo.Start(0, Eigen::Translation3d(0, 0, 0.075) * Eigen::Isometry3d::Identity());
+    feed(&lo, 0, 500);
+    EXPECT_FALSE(lo.CorrectPose(pose(5)));
+    EXPECT_NEAR(tilt_deg(lo.T_w_body().linear()), 5, 1e-6);
+  }
 }
 
 TEST(SlipScore, EventsFromSamplesAndTheirMatching) {

@@ -26,6 +26,7 @@ void VisualLegFusion::AfterTrack(const TrackResult& r) {
                     r.inliers >= min_inliers_;
   if (!good) {
     ++carried_;
+    lo_->KeepLevel();
     return;
   }
   const Eigen::Isometry3d T_w_body = r.T_w_c * T_body_cam_.inverse();

@@ -6,7 +6,11 @@
 //    first search window together with the prior's measured misses; while vision fails it
 //    carries the pose, and a new map segment after a loss starts from it;
 //  - after tracking, a frame tracked with enough inliers corrects the filter: its position and
-//    orientation are set to the visual ones (vision is about ten times more accurate here).
+//    orientation are set to the visual ones (vision is about ten times more accurate here), the
+//    orientation levelled to the IMU's mean force if it tilts beyond lo.fusion_tilt_gate_deg
+//    from it (a tracker on few points before a loss); a frame that does not correct it has the
+//    filter's own orientation checked the same way. The tracker's next prediction is then the
+//    filter's pose, so a new map segment after a loss starts level.
 // The filter keeps running on every IMU and encoder sample in between.
 #include <optional>
 
@@ -31,6 +35,7 @@ class VisualLegFusion {
 
   int corrections() const { return corrections_; }
   int frames_carried() const { return carried_; }  // frames without a visual correction
+  int levellings() const { return lo_->levellings(); }  // orientations levelled by the tilt gate
 
  private:
   lo::LegOdometry* lo_;

@@ -14,6 +14,7 @@
 
 #include "kinematics/leg_kinematics.h"
 #include "slam/lo/attitude_filter.h"
+#include "slam/lo/gravity_tilt.h"
 #include "slam/lo/leg_imu_kf.h"
 #include "slam/lo/yaw_bias_from_feet.h"
 #include "slam/measurements/contact_reading.h"
@@ -52,8 +53,14 @@ class LegOdometry {
   void AddJoints(const JointState& js);
 
   // A pose from elsewhere (the visual estimate, slam.mode full) replaces the estimate: the
-  // position moves the body and the feet together, the orientation replaces the attitude's.
-  void CorrectPose(const Eigen::Isometry3d& T_w_body);
+  // position moves the body and the feet together, the orientation replaces the attitude's, but
+  // levelled to the IMU's mean force when its "up" is further from it than lo.fusion_tilt_gate_deg
+  // (returns true then).
+  bool CorrectPose(const Eigen::Isometry3d& T_w_body);
+  // The same check on the filter's own orientation (slam.mode full, while it carries the pose)
+  // with lo.fusion_tilt_carry_gate_deg: the attitude filter's own gravity correction leans with
+  // the gait (up to 2.6 deg while walking), the mean force does not; true if it levelled.
+  bool KeepLevel();
 
   bool started() const { return started_; }
   // Time of the last IMU sample taken in (ns; 0 before any).
@@ -64,11 +71,16 @@ class LegOdometry {
   const LegImuKf& filter() const { return kf_; }
   const AttitudeFilter& attitude() const { return attitude_; }
   const YawBiasFromFeet& yaw_bias() const { return yaw_bias_; }
+  const GravityTilt& gravity_tilt() const { return gravity_tilt_; }
+  int levellings() const { return levellings_; }  // orientations levelled by the tilt gate so far
   // Mean time of one AddImu + AddJoints pair so far (ms), for the run summary.
   double mean_update_ms() const { return updates_ ? update_ms_sum_ / updates_ : 0.0; }
 
  private:
   std::array<bool, kNumLegs> ContactOf(const std::array<Eigen::Vector3d, kNumLegs>& rel_w) const;
+  // R levelled when its "up" is further than gate_deg from the IMU's mean force, or nothing when
+  // it passes (or the gate is 0, or a whole window has not been seen yet).
+  std::optional<Eigen::Matrix3d> Levelled(const Eigen::Matrix3d& R, double gate_deg) const;
 
   slam::LegOdometrySettings settings_;
   const kin::LegKinematics& kin_;
@@ -99,6 +111,8 @@ class LegOdometry {
   Eigen::Vector3d travel_w_ = Eigen::Vector3d::Zero();
   std::array<FootStatus, kNumLegs> feet_{};
   YawBiasFromFeet yaw_bias_;
+  GravityTilt gravity_tilt_;
+  int levellings_ = 0;
   // Rolling displacement of each foot's centre since its touch-down (m, world): the contact
   // point is the centre less it.
   std::array<Eigen::Vector3d, kNumLegs> rolled_w_{};

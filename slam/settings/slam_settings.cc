@@ -193,6 +193,9 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("slip_min_window_s", &lo->slip_min_window_s, NumberRange::Closed(0, 1));
   m->Number("contact_height_m", &lo->contact_height_m, NumberRange::Positive());
   m->Integer("fusion_min_inliers", &lo->fusion_min_inliers, kCount0);
+  m->Number("fusion_tilt_gate_deg", &lo->fusion_tilt_gate_deg, NumberRange::Closed(0, 90));
+  m->Number("fusion_tilt_carry_gate_deg", &lo->fusion_tilt_carry_gate_deg, NumberRange::Closed(0, 90));
+  m->Number("fusion_tilt_window_s", &lo->fusion_tilt_window_s, NumberRange::OpenClosed(0, 60));
   m->Number("slip_speed_mps", &lo->slip_speed_mps, NumberRange::Positive());
   m->Number("yaw_bias_initial_std", &lo->yaw_bias_initial_std, NumberRange::NonNegative());
   m->Number("yaw_bias_walk", &lo->yaw_bias_walk, NumberRange::NonNegative());
@@ -399,6 +402,9 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "slip_min_window_s", lo.slip_min_window_s);
   EmitNumber(out, "contact_height_m", lo.contact_height_m);
   EmitInt(out, "fusion_min_inliers", lo.fusion_min_inliers);
+  EmitNumber(out, "fusion_tilt_gate_deg", lo.fusion_tilt_gate_deg);
+  EmitNumber(out, "fusion_tilt_carry_gate_deg", lo.fusion_tilt_carry_gate_deg);
+  EmitNumber(out, "fusion_tilt_window_s", lo.fusion_tilt_window_s);
   EmitNumber(out, "slip_speed_mps", lo.slip_speed_mps);
   EmitNumber(out, "yaw_bias_initial_std", lo.yaw_bias_initial_std);
   EmitNumber(out, "yaw_bias_walk", lo.yaw_bias_walk);

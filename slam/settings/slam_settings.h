@@ -165,6 +165,12 @@ struct LegOdometrySettings {
   double slip_min_window_s = 0.01;   // a foot is judged once it has stood this long (s)
   double contact_height_m = 0.006;   // estimated: feet within this of the lowest foot are in contact (m)
   int fusion_min_inliers = 50;       // full: a frame tracked with this many inliers corrects the filter (count)
+  // full: an orientation (vision's, or the filter's own while it carries the pose) whose "up" is
+  // further than this from the IMU's mean specific force over fusion_tilt_window_s is levelled
+  // to it (deg; 0 = off).
+  double fusion_tilt_gate_deg = 2.5;
+  double fusion_tilt_carry_gate_deg = 1.0;  // the same for the filter's own orientation while it carries the pose (deg; 0 = off)
+  double fusion_tilt_window_s = 2.0;  // that mean's window (s)
   // Slip, by speed: a stance foot whose body velocity differs from the filter's by more than this
   // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
   // stance foot agrees with the filter (m/s).
