@@ -26,11 +26,13 @@ void VisualLegFusion::AfterTrack(const TrackResult& r) {
                     r.inliers >= min_inliers_;
   if (!good) {
     ++carried_;
+    lo_->HoldGravity(false);
     lo_->KeepLevel();
     return;
   }
   const Eigen::Isometry3d T_w_body = r.T_w_c * T_body_cam_.inverse();
   lo_->CorrectPose(T_w_body);
+  lo_->HoldGravity(true);
   last_T_w_c_ = r.T_w_c;
   ++corrections_;
 }

@@ -64,7 +64,7 @@ void AttitudeFilter::Add(const ImuSample& s) {
     force = q_w_b_.conjugate() * *force_w_;
   }
   const double norm = force.norm();
-  corrected_ = std::abs(norm - opt_.gravity_mps2) <= opt_.gravity_gate_mps2 && norm > 0;
+  corrected_ = !hold_ && std::abs(norm - opt_.gravity_mps2) <= opt_.gravity_gate_mps2 && norm > 0;
   if (!corrected_) return;
   const Eigen::Vector3d up_measured = force / norm;
   const Eigen::Vector3d up_predicted = q_w_b_.conjugate() * Eigen::Vector3d::UnitZ();

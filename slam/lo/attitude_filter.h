@@ -52,6 +52,11 @@ class AttitudeFilter {
   // stance feet observe the rate about the vertical, which gravity does not).
   void AddGyroBias(const Eigen::Vector3d& db) { bias_ += db; }
 
+  // While held, Add integrates the gyro only: no gravity correction and no bias update (the
+  // orientation comes from elsewhere, e.g. vision every frame, and the per-sample gravity
+  // direction, which leans with the gait, would only pull it off and wind the bias up).
+  void HoldGravity(bool hold) { hold_ = hold; }
+
   const Eigen::Quaterniond& q_w_b() const { return q_w_b_; }
   // The orientation at t_ns, extrapolated from the last sample with its bias-corrected rate.
   Eigen::Quaterniond OrientationAt(int64_t t_ns) const;
@@ -70,6 +75,7 @@ class AttitudeFilter {
   std::optional<int64_t> last_t_ns_;
   bool have_rate_ = false;  // a sample has come since Reset
   bool corrected_ = false;
+  bool hold_ = false;
 };
 
 }  // namespace viqu::lo

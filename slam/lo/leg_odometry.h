@@ -61,6 +61,9 @@ class LegOdometry {
   // with lo.fusion_tilt_carry_gate_deg: the attitude filter's own gravity correction leans with
   // the gait (up to 2.6 deg while walking), the mean force does not; true if it levelled.
   bool KeepLevel();
+  // Holds the attitude's gravity correction (lo.fusion_hold_gravity, while vision corrects the
+  // filter every frame) or releases it; a no-op when that setting is off.
+  void HoldGravity(bool hold) { attitude_.HoldGravity(hold && settings_.fusion_hold_gravity); }
 
   bool started() const { return started_; }
   // Time of the last IMU sample taken in (ns; 0 before any).

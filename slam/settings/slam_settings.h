@@ -171,6 +171,9 @@ struct LegOdometrySettings {
   double fusion_tilt_gate_deg = 2.5;
   double fusion_tilt_carry_gate_deg = 1.0;  // the same for the filter's own orientation while it carries the pose (deg; 0 = off)
   double fusion_tilt_window_s = 2.0;  // that mean's window (s)
+  // full: while vision corrects the filter every frame, its attitude integrates the gyro only
+  // (no gravity correction, no gyro-bias update); they resume while it carries the pose.
+  bool fusion_hold_gravity = false;
   // Slip, by speed: a stance foot whose body velocity differs from the filter's by more than this
   // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
   // stance foot agrees with the filter (m/s).
