@@ -357,6 +357,10 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   if (lo.Choice("slip_reference", &slip_reference, {"position", "prediction"})) {
     s->lo.emplace_back("slip_reference", slip_reference);
   }
+  bool hold_gravity = false;
+  if (lo.Bool("fusion_hold_gravity", &hold_gravity)) {
+    s->lo.emplace_back("fusion_hold_gravity", hold_gravity ? "true" : "false");
+  }
   for (const char* key : {"attitude_gain", "gyro_bias_gain", "gravity_gate_mps2", "attitude_accel_average_s",
                           "accel_noise", "stance_foot_noise", "swing_foot_noise", "kin_position_noise_m",
                           "kin_velocity_noise_mps", "velocity_window_s", "touchdown_s", "touchdown_inflation",
