@@ -97,15 +97,18 @@ std::optional<Eigen::Matrix3d> LegOdometry::Levelled(const Eigen::Matrix3d& R, d
   return Eigen::AngleAxisd(level->norm(), level->normalized()).toRotationMatrix() * R;
 }
 
+void LegOdometry::SetOrientation(const Eigen::Matrix3d& R_w_b) {
+  // The turn about the vertical, for the stance-pair headings measured so far.
+  const Eigen::Matrix3d turn = R_w_b * attitude_.q_w_b().toRotationMatrix().transpose();
+  yaw_bias_.TurnedBy(std::atan2(turn(1, 0), turn(0, 0)));
+  attitude_.SetOrientation(Eigen::Quaterniond(R_w_b));
+}
+
 bool LegOdometry::CorrectPose(const Eigen::Isometry3d& T_w_body) {
   if (!started_) return false;
   kf_.Translate(T_w_body.translation() - kf_.position());
   const std::optional<Eigen::Matrix3d> levelled = Levelled(T_w_body.linear(), settings_.fusion_tilt_gate_deg);
-  const Eigen::Matrix3d R = levelled ? *levelled : Eigen::Matrix3d(T_w_body.linear());
-  // The turn about the vertical, for the stance-pair headings measured so far.
-  const Eigen::Matrix3d turn = R * attitude_.q_w_b().toRotationMatrix().transpose();
-  yaw_bias_.TurnedBy(std::atan2(turn(1, 0), turn(0, 0)));
-  attitude_.SetOrientation(Eigen::Quaterniond(R));
+  SetOrientation(levelled ? *levelled : Eigen::Matrix3d(T_w_body.linear()));
   // The window's body positions move with the correction, so that the next windowed velocity
   // does not see it as motion.
   window_.clear();
@@ -118,9 +121,7 @@ bool LegOdometry::KeepLevel() {
   const std::optional<Eigen::Matrix3d> levelled =
       Levelled(attitude_.q_w_b().toRotationMatrix(), settings_.fusion_tilt_carry_gate_deg);
   if (!levelled) return false;
-  const Eigen::Matrix3d turn = *levelled * attitude_.q_w_b().toRotationMatrix().transpose();
-  yaw_bias_.TurnedBy(std::atan2(turn(1, 0), turn(0, 0)));
-  attitude_.SetOrientation(Eigen::Quaterniond(*levelled));
+  SetOrientation(*levelled);
   ++levellings_;
   return true;
 }

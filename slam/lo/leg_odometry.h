@@ -74,7 +74,6 @@ class LegOdometry {
   const LegImuKf& filter() const { return kf_; }
   const AttitudeFilter& attitude() const { return attitude_; }
   const YawBiasFromFeet& yaw_bias() const { return yaw_bias_; }
-  const GravityTilt& gravity_tilt() const { return gravity_tilt_; }
   int levellings() const { return levellings_; }  // orientations levelled by the tilt gate so far
   // Mean time of one AddImu + AddJoints pair so far (ms), for the run summary.
   double mean_update_ms() const { return updates_ ? update_ms_sum_ / updates_ : 0.0; }
@@ -84,6 +83,8 @@ class LegOdometry {
   // R levelled when its "up" is further than gate_deg from the IMU's mean force, or nothing when
   // it passes (or the gate is 0, or a whole window has not been seen yet).
   std::optional<Eigen::Matrix3d> Levelled(const Eigen::Matrix3d& R, double gate_deg) const;
+  // Replaces the attitude's orientation, telling the stance-pair yaw-bias estimator the turn.
+  void SetOrientation(const Eigen::Matrix3d& R_w_b);
 
   slam::LegOdometrySettings settings_;
   const kin::LegKinematics& kin_;
