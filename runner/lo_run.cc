@@ -98,6 +98,7 @@ LoSummary LoRun::Finish(const eval::Trajectory& gt_cam, double path_length_m, Js
   json->Set("lo.update_ms_mean", s.update_ms_mean);
   // The gyro bias about the trunk's vertical: the estimate at the end (stance pairs) and the truth.
   json->Set("lo.gyro_bias_z_radps", lo_.attitude().gyro_bias().z());
+  json->SetNumbers("lo.true_gyro_bias_radps", {true_gyro_bias_i_.x(), true_gyro_bias_i_.y(), true_gyro_bias_i_.z()});
   json->Set("lo.true_gyro_bias_z_radps", true_gyro_bias_i_.z());
   json->Set("lo.yaw_bias_pieces", lo_.yaw_bias().pieces());
   json->Set("lo.yaw_bias_rejected", lo_.yaw_bias().rejected());

@@ -97,6 +97,9 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
     json->Set("lo.fusion_corrections", fusion_->corrections());
     json->Set("lo.frames_carried", fusion_->frames_carried());
     json->Set("lo.levellings", fusion_->levellings());
+    json->Set("lo.fusion_bias_updates", fusion_->bias_updates());
+    const Eigen::Vector3d b = fusion_->gyro_bias();
+    json->SetNumbers("lo.fused_gyro_bias_radps", {b.x(), b.y(), b.z()});
   }
   if (gt.empty()) return s;
   // The trajectory is kept whatever happens here; the metrics say why an ATE is missing.

@@ -367,7 +367,7 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
                           "touchdown_inflation_vertical", "slip_gate_chi2", "slip_min_window_s", "slip_speed_mps",
                           "yaw_bias_initial_std", "yaw_bias_walk", "yaw_pair_noise_m", "yaw_pair_min_s",
                           "yaw_pair_max_s", "yaw_pair_max_rate_radps",
-                          "yaw_pair_gate_chi2", "contact_height_m", "fusion_min_inliers",
+                          "yaw_pair_gate_chi2", "contact_height_m", "fusion_min_inliers", "fusion_gyro_bias_s",
                           "fusion_tilt_gate_deg", "fusion_tilt_carry_gate_deg", "fusion_tilt_window_s"}) {
     double v = 0;
     if (lo.Number(key, &v, NumberRange::NonNegative())) s->lo.emplace_back(key, YamlNumberText(v));

@@ -2,6 +2,7 @@
 // attitude filter, and the contact and slip logic on synthetic foot tracks of the rat's legs
 // (URDF kinematics, no simulator).
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <optional>
 #include <random>
@@ -11,6 +12,7 @@
 #include "common/errors.h"
 #include "runner/slip_score.h"
 #include "kinematics/leg_kinematics.h"
+#include "slam/fusion/visual_leg_fusion.h"
 #include "slam/lo/attitude_filter.h"
 #include "slam/lo/gravity_tilt.h"
 #include "slam/lo/leg_imu_kf.h"
@@ -940,6 +942,174 @@ TEST_F(SyntheticStance, TheTiltGateLevelsAnOrientationFarFromGravity) {
     EXPECT_FALSE(lo.CorrectPose(pose(5)));
     EXPECT_NEAR(tilt_deg(lo.T_w_body().linear()), 5, 1e-6);
   }
+}
+
+// The gyro bias from vision (lo.fusion_gyro_bias_s): a trunk at rest whose gyro reads a bias,
+// the attitude held (no gravity correction), corrected by the true orientation every 50 ms. Each
+// correction sees the rotation (b_est - b) dt and moves the estimate by it over the time constant,
+// so the error shrinks by exactly (1 - dt / tau) per frame; vision's noise enters only as the
+// difference of two frames' errors and does not build up; a levelled correction, a carried frame
+// or a jump larger than 0.01 rad does not count; 0 = off.
+TEST_F(SyntheticStance, VisionCorrectionsFindTheGyroBias) {
+  slam::LegOdometrySettings s;
+  s.attitude_gain = 0;
+  s.gyro_bias_gain = 0;
+  s.yaw_bias_initial_std = 0;  // the stance-pair estimate of the bias about z: off
+  s.fusion_hold_gravity = true;
+  s.fusion_gyro_bias_s = 2.0;
+  const Eigen::Vector3d bias(0.003, -0.002, 0.004);
+  const Eigen::Isometry3d still = Eigen::Translation3d(0.1, 0.2, 0.075) * Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ());
+  int k = 0;
+  const auto feed = [&](lo::LegOdometry* lo, int n) {  // n IMU samples at 200 Hz
+    for (int end = k + n; k < end; ++k) {
+      ImuSample imu;
+      imu.t_ns = k * 5'000'000LL;
+      imu.accel_i = Eigen::Vector3d(0, 0, 9.81);
+      imu.gyro_i = bias;
+      lo->AddImu(imu);
+    }
+  };
+  {
+    lo::LegOdometry lo(s, kin_);
+    lo.Start(0, still);
+    lo.HoldGravity(true);
+    feed(&lo, 1);
+    lo.CorrectPose(still);  // the first correction only starts the interval
+    EXPECT_EQ(lo.vision_bias_updates(), 0);
+    EXPECT_EQ(lo.attitude().gyro_bias(), Eigen::Vector3d::Zero());
+    Eigen::Vector3d expected_err = -bias;  // estimate minus truth
+    for (int frame = 0; frame < 10; ++frame) {
+      feed(&lo, 10);
+      lo.CorrectPose(still);
+      expected_err *= 1 - 0.05 / 2.0;
+    }
+    EXPECT_EQ(lo.vision_bias_updates(), 10);
+    EXPECT_LT((lo.attitude().gyro_bias() - bias - expected_err).norm(), 1e-9);
+    // A carried frame (vision lost) ends the interval: the next correction starts a new one.
+    feed(&lo, 10);
+    lo.Carried();
+    feed(&lo, 10);
+    const Eigen::Vector3d before = lo.attitude().gyro_bias();
+    lo.CorrectPose(still);
+    EXPECT_EQ(lo.attitude().gyro_bias(), before);
+    // A jump of the map (0.02 rad) is not bias; the correction after it counts again.
+    feed(&lo, 10);
+    lo.CorrectPose(Eigen::Isometry3d(still * Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitX())));
+    EXPECT_EQ(lo.attitude().gyro_bias(), before);
+    EXPECT_EQ(lo.vision_bias_updates(), 10);
+    feed(&lo, 10);
+    lo.CorrectPose(still);  // the 0.02 rad back is a jump too
+    feed(&lo, 10);
+    lo.CorrectPose(still);
+    EXPECT_EQ(lo.vision_bias_updates(), 11);
+  }
+  {
+    // 60 s, vision's orientation off by sigma = 1 mrad (per axis) at every frame. The estimate's
+    // error is the last frame's noise over the time constant (rms sqrt(3) sigma / tau = 0.87 mrad/s
+    // here) plus a low-passed remainder (rms sigma sqrt(dt / 2) / tau = 0.06 mrad/s): it does not
+    // grow with the frames, and over the frames it averages to the bias.
+    k = 0;
+    lo::LegOdometry lo(s, kin_);
+    lo.Start(0, still);
+    lo.HoldGravity(true);
+    std::mt19937 rng(7);
+    std::normal_distribution<double> n(0.0, 0.001);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double sum2 = 0;
+    int frames = 0;
+    for (int frame = 0; frame < 1200; ++frame) {
+      feed(&lo, 10);
+      const Eigen::Vector3d w(n(rng), n(rng), n(rng));
+      lo.CorrectPose(Eigen::Isometry3d(still * Eigen::AngleAxisd(w.norm(), w.normalized())));
+      if (frame < 400) continue;  // 20 s = 10 time constants to converge
+      const Eigen::Vector3d err = lo.attitude().gyro_bias() - bias;
+      sum += err;
+      sum2 += err.squaredNorm();
+      ++frames;
+    }
+    const double rms = std::sqrt(sum2 / frames);
+    std::printf("bias error from noisy vision: rms %.3g rad/s, mean %.3g rad/s\n", rms, (sum / frames).norm());
+    EXPECT_LT(rms, 1.5 * std::sqrt(3.0) * 0.001 / 2.0);
+    EXPECT_LT((sum / frames).norm(), 1e-4);
+  }
+  {
+    slam::LegOdometrySettings off = s;
+    off.fusion_gyro_bias_s = 0;
+    k = 0;
+    lo::LegOdometry lo(off, kin_);
+    lo.Start(0, still);
+    lo.HoldGravity(true);
+    for (int frame = 0; frame < 20; ++frame) {
+      feed(&lo, 10);
+      lo.CorrectPose(still);
+    }
+    EXPECT_EQ(lo.attitude().gyro_bias(), Eigen::Vector3d::Zero());
+    EXPECT_EQ(lo.vision_bias_updates(), 0);
+  }
+}
+
+// slam.mode full: the tracker's prediction is the filter's camera pose. A frame that vision tracked
+// with fewer inliers than lo.fusion_min_inliers does not correct the filter, and must not become
+// the base of the next prediction either (the tracker predicts from the pose it gave the last
+// frame): the prior is the motion from that pose to the filter's.
+TEST_F(SyntheticStance, AWeaklyTrackedFrameIsNotTheBaseOfTheNextPrior) {
+  slam::LegOdometrySettings s;
+  lo::LegOdometry lo(s, kin_);
+  const Eigen::Isometry3d T = Eigen::Translation3d(0.3, -0.2, 0.075) * Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ());
+  lo.Start(0, T);
+  int k = 0;
+  const auto feed = [&](int n) {  // at rest, no noise: the filter stays at T
+    for (int end = k + n; k < end; ++k) {
+      ImuSample imu;
+      imu.t_ns = k * 5'000'000LL;
+      imu.accel_i = Eigen::Vector3d(0, 0, 9.81);
+      imu.gyro_i.setZero();
+      lo.AddImu(imu);
+    }
+  };
+  const Eigen::Isometry3d T_body_cam = Eigen::Translation3d(0.05, 0.01, 0.02) *
+                                       Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitZ()) *
+                                       Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX());
+  slam::VisualLegFusion fusion(&lo, T_body_cam, 50);
+  feed(10);
+  EXPECT_FALSE(fusion.NextPrior().has_value());  // nothing before the first frame
+  slam::TrackResult r;
+  r.status = slam::TrackStatus::kTracking;
+  r.inliers = 200;
+  r.T_w_c = T * T_body_cam;
+  fusion.AfterTrack(r);
+  EXPECT_EQ(fusion.corrections(), 1);
+  feed(10);
+  ASSERT_TRUE(fusion.NextPrior().has_value());
+  // Tracked on 30 points, 2 deg pitched and 5 mm off: carried, not a correction.
+  r.inliers = 30;
+  r.T_w_c = T * T_body_cam * Eigen::AngleAxisd(2 * M_PI / 180, Eigen::Vector3d::UnitX()) *
+            Eigen::Translation3d(0.005, 0, 0);
+  fusion.AfterTrack(r);
+  EXPECT_EQ(fusion.frames_carried(), 1);
+  feed(10);
+  const std::optional<slam::VisualLegFusion::Prior> p = fusion.NextPrior();
+  ASSERT_TRUE(p.has_value());
+  EXPECT_LT((lo.T_w_body().translation() - T.translation()).norm(), 1e-9);  // the filter kept its pose
+  const Eigen::Isometry3d predicted = r.T_w_c * p->T_cur_last.inverse();
+  EXPECT_LT((predicted.matrix() - (lo.T_w_body() * T_body_cam).matrix()).norm(), 1e-9);
+  // 300 lost frames in a row (a camera dropout), the tracker composing each prior with its own
+  // pose as it does (T_c_w = T_cur_last T_c_w_last; the output is its inverse): the carried pose
+  // stays the filter's and its rotation orthonormal.
+  Eigen::Isometry3d T_c_w = r.T_w_c.inverse();
+  r.status = slam::TrackStatus::kLost;
+  r.inliers = 0;
+  for (int frame = 0; frame < 300; ++frame) {
+    const std::optional<slam::VisualLegFusion::Prior> q = fusion.NextPrior();
+    ASSERT_TRUE(q.has_value());
+    T_c_w = q->T_cur_last * T_c_w;
+    r.T_w_c = T_c_w.inverse();
+    fusion.AfterTrack(r);
+    feed(10);
+  }
+  const Eigen::Matrix3d R = T_c_w.linear();
+  EXPECT_LT((R * R.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+  EXPECT_LT((r.T_w_c.matrix() - (lo.T_w_body() * T_body_cam).matrix()).norm(), 1e-9);
 }
 
 TEST(SlipScore, EventsFromSamplesAndTheirMatching) {

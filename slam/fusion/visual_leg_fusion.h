@@ -1,6 +1,6 @@
 #pragma once
 // Fusion of the visual estimate with leg odometry + IMU (slam.mode full). Per camera frame:
-//  - before tracking, the filter's motion of the camera since the last frame becomes the
+//  - before tracking, the camera's motion from the tracker's last pose to the filter's becomes the
 //    tracker's motion prior (instead of the constant-velocity guess), with the uncertainty of its
 //    translation (the filter's velocity covariance over the interval), which sizes the tracker's
 //    first search window together with the prior's measured misses; while vision fails it
@@ -28,20 +28,30 @@ class VisualLegFusion {
   VisualLegFusion(lo::LegOdometry* lo, const Eigen::Isometry3d& T_body_cam, int min_inliers)
       : lo_(lo), T_body_cam_(T_body_cam), min_inliers_(min_inliers) {}
 
-  // Gives `system` the filter's camera motion since the last frame (nothing before the first).
+  // Gives `system` the motion from the camera pose it gave the last frame to the filter's camera
+  // pose now (nothing before the first), so that its prediction is the filter's pose.
   void BeforeTrack(SlamSystem* system);
+  // That prior (what BeforeTrack gives): T_cur_last and its translation's standard deviation (m).
+  struct Prior {
+    Eigen::Isometry3d T_cur_last;
+    double sigma_m = 0;
+  };
+  std::optional<Prior> NextPrior();
   // Corrects the filter with the frame's visual pose when it was tracked well.
   void AfterTrack(const TrackResult& r);
 
   int corrections() const { return corrections_; }
   int frames_carried() const { return carried_; }  // frames without a visual correction
   int levellings() const { return lo_->levellings(); }  // orientations levelled by the tilt gate
+  int bias_updates() const { return lo_->vision_bias_updates(); }  // gyro bias corrections from vision
+  Eigen::Vector3d gyro_bias() const { return lo_->attitude().gyro_bias(); }  // the fused filter's (rad/s, body)
 
  private:
   lo::LegOdometry* lo_;
   Eigen::Isometry3d T_body_cam_;
   int min_inliers_;
-  std::optional<Eigen::Isometry3d> last_T_w_c_;  // the filter's camera pose at the last frame
+  // The camera pose the tracker gave the last frame (the filter's before the first AfterTrack).
+  std::optional<Eigen::Isometry3d> last_T_w_c_;
   int64_t last_t_ns_ = 0;                        // the filter's time then (ns)
   int corrections_ = 0, carried_ = 0;
 };

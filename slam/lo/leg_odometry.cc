@@ -108,7 +108,26 @@ bool LegOdometry::CorrectPose(const Eigen::Isometry3d& T_w_body) {
   if (!started_) return false;
   kf_.Translate(T_w_body.translation() - kf_.position());
   const std::optional<Eigen::Matrix3d> levelled = Levelled(T_w_body.linear(), settings_.fusion_tilt_gate_deg);
+  const int64_t t_ns = last_imu_ns_.value_or(0);
+  if (settings_.fusion_gyro_bias_s > 0 && vision_reference_ && !levelled && vision_reference_ns_ &&
+      t_ns > *vision_reference_ns_) {
+    // R_att = R0 Exp((w - b_est) dt) and R_vision = R0 Exp((w - b) dt), so R_att^T R_vision =
+    // Exp((b_est - b) dt): the estimate's excess times the interval. Moving it by that rotation over
+    // the time constant integrates (b_est - b) dt / tau; vision's error enters only as the
+    // difference of its errors at the two ends, so it does not accumulate.
+    const Eigen::AngleAxisd e(attitude_.q_w_b().toRotationMatrix().transpose() * T_w_body.linear());
+    // A larger turn is not bias (the simulated bias, 3 sigma 0.006 rad/s, turns 0.3 mrad in a
+    // 50 ms frame interval; vision's own error per frame is about 1 mrad): a relocalisation or a
+    // jump of the map. Not a setting: it only guards against such jumps.
+    constexpr double kMaxTurnRad = 0.01;
+    if (std::abs(e.angle()) <= kMaxTurnRad) {
+      attitude_.AddGyroBias(-(e.angle() / settings_.fusion_gyro_bias_s) * e.axis());
+      ++vision_bias_updates_;
+    }
+  }
   SetOrientation(levelled ? *levelled : Eigen::Matrix3d(T_w_body.linear()));
+  vision_reference_ = !levelled;
+  vision_reference_ns_ = t_ns;
   // The window's body positions move with the correction, so that the next windowed velocity
   // does not see it as motion.
   window_.clear();
@@ -121,6 +140,7 @@ bool LegOdometry::KeepLevel() {
   const std::optional<Eigen::Matrix3d> levelled =
       Levelled(attitude_.q_w_b().toRotationMatrix(), settings_.fusion_tilt_carry_gate_deg);
   if (!levelled) return false;
+  vision_reference_ = false;
   SetOrientation(*levelled);
   ++levellings_;
   return true;

@@ -55,12 +55,20 @@ class LegOdometry {
   // A pose from elsewhere (the visual estimate, slam.mode full) replaces the estimate: the
   // position moves the body and the feet together, the orientation replaces the attitude's, but
   // levelled to the IMU's mean force when its "up" is further from it than lo.fusion_tilt_gate_deg
-  // (returns true then).
+  // (returns true then). With lo.fusion_gyro_bias_s, two corrections in a row (nothing levelled,
+  // nothing carried between) also correct the gyro bias: the rotation from the attitude's
+  // gyro-integrated orientation to vision's is the bias left over the interval.
   bool CorrectPose(const Eigen::Isometry3d& T_w_body);
   // The same check on the filter's own orientation (slam.mode full, while it carries the pose)
   // with lo.fusion_tilt_carry_gate_deg: the attitude filter's own gravity correction leans with
   // the gait (up to 2.6 deg while walking), the mean force does not; true if it levelled.
   bool KeepLevel();
+  // Vision did not correct this frame (slam.mode full): the attitude's gravity correction resumes,
+  // and the next correction starts a new interval for the gyro bias.
+  void Carried() {
+    vision_reference_ = false;
+    attitude_.HoldGravity(false);
+  }
   // Holds the attitude's gravity correction (lo.fusion_hold_gravity, while vision corrects the
   // filter every frame) or releases it; a no-op when that setting is off.
   void HoldGravity(bool hold) { attitude_.HoldGravity(hold && settings_.fusion_hold_gravity); }
@@ -75,6 +83,7 @@ class LegOdometry {
   const AttitudeFilter& attitude() const { return attitude_; }
   const YawBiasFromFeet& yaw_bias() const { return yaw_bias_; }
   int levellings() const { return levellings_; }  // orientations levelled by the tilt gate so far
+  int vision_bias_updates() const { return vision_bias_updates_; }  // gyro bias corrections from vision so far
   // Mean time of one AddImu + AddJoints pair so far (ms), for the run summary.
   double mean_update_ms() const { return updates_ ? update_ms_sum_ / updates_ : 0.0; }
 
@@ -117,6 +126,11 @@ class LegOdometry {
   YawBiasFromFeet yaw_bias_;
   GravityTilt gravity_tilt_;
   int levellings_ = 0;
+  // The attitude's orientation was vision's at the last correction and the gyro alone (with the
+  // gravity correction unless held) has turned it since: the next correction measures the bias.
+  bool vision_reference_ = false;
+  std::optional<int64_t> vision_reference_ns_;  // time of that correction (the last IMU sample's, ns)
+  int vision_bias_updates_ = 0;
   // Rolling displacement of each foot's centre since its touch-down (m, world): the contact
   // point is the centre less it.
   std::array<Eigen::Vector3d, kNumLegs> rolled_w_{};

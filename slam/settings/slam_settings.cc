@@ -197,6 +197,7 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Number("fusion_tilt_carry_gate_deg", &lo->fusion_tilt_carry_gate_deg, NumberRange::Closed(0, 90));
   m->Number("fusion_tilt_window_s", &lo->fusion_tilt_window_s, NumberRange::OpenClosed(0, 60));
   m->Bool("fusion_hold_gravity", &lo->fusion_hold_gravity);
+  m->Number("fusion_gyro_bias_s", &lo->fusion_gyro_bias_s, NumberRange::Closed(0, 1e6));
   m->Number("slip_speed_mps", &lo->slip_speed_mps, NumberRange::Positive());
   m->Number("yaw_bias_initial_std", &lo->yaw_bias_initial_std, NumberRange::NonNegative());
   m->Number("yaw_bias_walk", &lo->yaw_bias_walk, NumberRange::NonNegative());
@@ -407,6 +408,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "fusion_tilt_carry_gate_deg", lo.fusion_tilt_carry_gate_deg);
   EmitNumber(out, "fusion_tilt_window_s", lo.fusion_tilt_window_s);
   EmitBool(out, "fusion_hold_gravity", lo.fusion_hold_gravity);
+  EmitNumber(out, "fusion_gyro_bias_s", lo.fusion_gyro_bias_s);
   EmitNumber(out, "slip_speed_mps", lo.slip_speed_mps);
   EmitNumber(out, "yaw_bias_initial_std", lo.yaw_bias_initial_std);
   EmitNumber(out, "yaw_bias_walk", lo.yaw_bias_walk);
