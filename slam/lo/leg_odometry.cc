@@ -79,6 +79,8 @@ void LegOdometry::Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body) {
   yaw_bias_.Reset(t_ns);
   gravity_tilt_.Reset();
   levellings_ = 0;
+  vision_reference_ns_.reset();
+  vision_bias_updates_ = 0;
   rolled_w_.fill(Eigen::Vector3d::Zero());
   last_joints_ns_.reset();
 }
@@ -109,8 +111,7 @@ bool LegOdometry::CorrectPose(const Eigen::Isometry3d& T_w_body) {
   kf_.Translate(T_w_body.translation() - kf_.position());
   const std::optional<Eigen::Matrix3d> levelled = Levelled(T_w_body.linear(), settings_.fusion_tilt_gate_deg);
   const int64_t t_ns = last_imu_ns_.value_or(0);
-  if (settings_.fusion_gyro_bias_s > 0 && vision_reference_ && !levelled && vision_reference_ns_ &&
-      t_ns > *vision_reference_ns_) {
+  if (settings_.fusion_gyro_bias_s > 0 && !levelled && vision_reference_ns_ && t_ns > *vision_reference_ns_) {
     // R_att = R0 Exp((w - b_est) dt) and R_vision = R0 Exp((w - b) dt), so R_att^T R_vision =
     // Exp((b_est - b) dt): the estimate's excess times the interval. Moving it by that rotation over
     // the time constant integrates (b_est - b) dt / tau; vision's error enters only as the
@@ -126,8 +127,7 @@ bool LegOdometry::CorrectPose(const Eigen::Isometry3d& T_w_body) {
     }
   }
   SetOrientation(levelled ? *levelled : Eigen::Matrix3d(T_w_body.linear()));
-  vision_reference_ = !levelled;
-  vision_reference_ns_ = t_ns;
+  vision_reference_ns_ = levelled ? std::nullopt : std::optional<int64_t>(t_ns);
   // The window's body positions move with the correction, so that the next windowed velocity
   // does not see it as motion.
   window_.clear();
@@ -140,7 +140,7 @@ bool LegOdometry::KeepLevel() {
   const std::optional<Eigen::Matrix3d> levelled =
       Levelled(attitude_.q_w_b().toRotationMatrix(), settings_.fusion_tilt_carry_gate_deg);
   if (!levelled) return false;
-  vision_reference_ = false;
+  vision_reference_ns_.reset();
   SetOrientation(*levelled);
   ++levellings_;
   return true;

@@ -66,8 +66,8 @@ class LegOdometry {
   // Vision did not correct this frame (slam.mode full): the attitude's gravity correction resumes,
   // and the next correction starts a new interval for the gyro bias.
   void Carried() {
-    vision_reference_ = false;
-    attitude_.HoldGravity(false);
+    vision_reference_ns_.reset();
+    HoldGravity(false);
   }
   // Holds the attitude's gravity correction (lo.fusion_hold_gravity, while vision corrects the
   // filter every frame) or releases it; a no-op when that setting is off.
@@ -126,10 +126,10 @@ class LegOdometry {
   YawBiasFromFeet yaw_bias_;
   GravityTilt gravity_tilt_;
   int levellings_ = 0;
-  // The attitude's orientation was vision's at the last correction and the gyro alone (with the
-  // gravity correction unless held) has turned it since: the next correction measures the bias.
-  bool vision_reference_ = false;
-  std::optional<int64_t> vision_reference_ns_;  // time of that correction (the last IMU sample's, ns)
+  // Set while the attitude's orientation was vision's at the last correction and the gyro alone
+  // (with the gravity correction unless held) has turned it since: the time of that correction
+  // (its last IMU sample's, ns); the next correction measures the bias.
+  std::optional<int64_t> vision_reference_ns_;
   int vision_bias_updates_ = 0;
   // Rolling displacement of each foot's centre since its touch-down (m, world): the contact
   // point is the centre less it.
