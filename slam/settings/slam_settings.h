@@ -173,12 +173,12 @@ struct LegOdometrySettings {
   double fusion_tilt_window_s = 2.0;  // that mean's window (s)
   // full: while vision corrects the filter every frame, its attitude integrates the gyro only
   // (no gravity correction, no gyro-bias update); they resume while it carries the pose.
-  bool fusion_hold_gravity = false;
+  bool fusion_hold_gravity = true;
   // full: the gyro bias from vision's orientation corrections: the rotation between the
   // attitude's gyro-integrated orientation and vision's, at consecutive corrections, is the
   // uncorrected bias times the interval; the estimate moves by that rotation over this time
   // constant (s; 0 = off).
-  double fusion_gyro_bias_s = 0.0;
+  double fusion_gyro_bias_s = 5.0;
   // Slip, by speed: a stance foot whose body velocity differs from the filter's by more than this
   // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
   // stance foot agrees with the filter (m/s).
