@@ -265,6 +265,76 @@ TEST(Features, EquiangularSubpixelFollowsFractionalDisparity) {
   EXPECT_LT(equiangular, 0.6 * parabola);
 }
 
+// A foreground strip at disparity 22 in front of a background at disparity 10: the 12 left-image
+// columns just left of the strip show background that the strip hides from the right camera, so
+// no match there can be right (an occlusion). The left-right check drops those matches and no
+// other: away from the strip's edges every match is the same with the check as without.
+TEST(Features, LeftRightCheckDropsOccludedMatchesOnly) {
+  cv::RNG rng(11);
+  auto texture = [&rng](int rows, int cols) {
+    cv::Mat noise(rows, cols, CV_32F), out;
+    rng.fill(noise, cv::RNG::NORMAL, 0, 1);
+    cv::GaussianBlur(noise, noise, cv::Size(0, 0), 1.2);
+    cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
+    noise.convertTo(out, CV_8U);
+    return out;
+  };
+  const int rows = 80, cols = 400, d = 10, D = 22, strip_lo = 200, strip_hi = 260;  // the strip's left-image columns
+  const cv::Mat back = texture(rows, cols + D), front = texture(rows, cols + D);
+  cv::Mat left(rows, cols, CV_8U), right(rows, cols, CV_8U);
+  for (int v = 0; v < rows; ++v) {
+    for (int u = 0; u < cols; ++u) {
+      left.at<uchar>(v, u) = (u >= strip_lo && u < strip_hi) ? front.at<uchar>(v, u) : back.at<uchar>(v, u);
+      // right(u) shows what the left camera sees at u + disparity: the strip where u + D falls on it.
+      const bool on_strip = u + D >= strip_lo && u + D < strip_hi;
+      right.at<uchar>(v, u) = on_strip ? front.at<uchar>(v, u + D) : back.at<uchar>(v, u + d);
+    }
+  }
+  // Sensor noise on each image, so that no match is exact (the outlier test scales with the median SAD).
+  for (cv::Mat* img : {&left, &right}) {
+    cv::Mat n(rows, cols, CV_16S);
+    rng.fill(n, cv::RNG::NORMAL, 0, 2);
+    cv::Mat wide;
+    img->convertTo(wide, CV_16S);
+    wide += n;
+    wide.convertTo(*img, CV_8U);
+  }
+  std::vector<cv::KeyPoint> kps;
+  for (int v = 10; v < rows - 10; v += 3) {
+    for (int u = 40; u < cols - 20; ++u) kps.emplace_back(cv::Point2f(u, v), 31.f, -1.f, 0.f, 0);
+  }
+  auto match = [&](double lr_check_px) {
+    slam::StereoMatcherOptions opt;
+    opt.sad_uniqueness = 1.0;  // every feature gets its row's SAD minimum: what the check drops is scored
+    opt.sad_outlier_factor = 100;
+    opt.lr_check_px = lr_check_px;
+    return slam::StereoMatcher(opt).Match(left, right, kps, cv::Mat(), {}, cv::Mat(), 400, 0.1);
+  };
+  const auto off = match(0), on = match(0.5);
+  const int h = slam::StereoMatcherOptions().sad_half_window;
+  int occluded = 0, occluded_off = 0, occluded_on = 0, clear = 0, clear_same = 0, clear_right = 0;
+  for (size_t i = 0; i < kps.size(); ++i) {
+    const int u = static_cast<int>(kps[i].pt.x);
+    if (u >= strip_lo - (D - d) && u < strip_lo) {  // background hidden from the right camera
+      ++occluded;
+      occluded_off += off[i].u_right >= 0;
+      occluded_on += on[i].u_right >= 0;
+    } else if (u + h < strip_lo - (D - d) || (u - h >= strip_lo && u + h < strip_hi) || u - h >= strip_hi) {
+      ++clear;  // the whole window on one surface, seen by both cameras
+      const double truth = (u >= strip_lo && u < strip_hi) ? D : d;
+      clear_right += off[i].u_right >= 0 && std::abs(kps[i].pt.x - off[i].u_right - truth) < 0.5;
+      clear_same += on[i].u_right == off[i].u_right;
+    }
+  }
+  std::printf("occluded: %d features, matched %d without the check, %d with it; clear: %d, %d right, %d the same\n",
+              occluded, occluded_off, occluded_on, clear, clear_right, clear_same);
+  ASSERT_GT(occluded, 200);
+  EXPECT_GT(occluded_off, 0.9 * occluded);   // every row has some minimum: wrong depths without the check
+  EXPECT_LT(occluded_on, 0.5 * occluded);    // measured in the comment below
+  EXPECT_EQ(clear_right, clear);             // the scene is matched right where it can be
+  EXPECT_EQ(clear_same, clear);              // and the check leaves those matches alone
+}
+
 // A pixel of pyramid level l lies at (x + 0.5) * cols / level_cols - 0.5 in the image, which is
 // where cv::resize samples it: a smooth blob resized to each level and found there by its
 // centroid maps back onto its image position. x * 1.2^l (the mapping before) misses by up to

@@ -124,6 +124,16 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
     return pyr[l];
   };
 
+  // Sub-pixel offset of the minimum from the SAD costs at the best column and its two neighbours.
+  const bool equiangular = opt_.subpixel == "equiangular";
+  auto SubPixel = [equiangular](double c0, double c1, double c2) {
+    if (equiangular) {
+      const double rise = std::max(c0, c2) - c1;
+      return rise > 0 ? (c0 - c2) / (2 * rise) : 0.0;
+    }
+    const double denom = 2 * (c0 + c2 - 2 * c1);
+    return denom > 0 ? (c0 - c2) / denom : 0.0;
+  };
   std::vector<double> best_sad(left_kps.size(), -1);  // SAD at the refined match, -1 if none
   std::vector<int> acc;
   std::vector<double> sad;
@@ -185,6 +195,7 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
     }
     int col = lo - 1 + arg;  // best right column at the level
     double c0 = sad[arg - 1], c1 = sad[arg], c2 = sad[arg + 1];
+    double shear = 0;  // of the winning window
     if (opt_.max_shear > 0 && opt_.shear_step > 0) {
       // Sheared windows around the upright minimum: the lowest SAD over shear and column wins,
       // the upright window on ties (shears tried in order of size).
@@ -203,20 +214,35 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
               c0 = acc[k - 1];
               c1 = acc[k];
               c2 = acc[k + 1];
+              shear = g;
             }
           }
         }
       }
     }
-    double delta = 0;
-    if (opt_.subpixel == "equiangular") {
-      const double rise = std::max(c0, c2) - c1;
-      delta = rise > 0 ? (c0 - c2) / (2 * rise) : 0.0;
-    } else {
-      const double denom = 2 * (c0 + c2 - 2 * c1);
-      delta = denom > 0 ? (c0 - c2) / denom : 0.0;
-    }
+    const double delta = SubPixel(c0, c1, c2);
     if (std::abs(delta) > 1) continue;
+    if (opt_.lr_check_px > 0) {
+      // Back from the right patch at `col` along the left row, over the whole disparity range (the
+      // same window, its shear mirrored onto the left image): the minimum should be the left
+      // feature's column, less the forward match's sub-pixel offset. A match that is not mutual
+      // (the feature's surface hidden from the right camera, ambiguous texture) is dropped.
+      const int reach = static_cast<int>(std::lround(std::abs(shear) * h));
+      const int b_lo = std::max(col + 1, h + reach + 1);
+      const int b_hi = std::min(col + static_cast<int>(std::floor(max_disp / grid.scale_x())), L.cols - h - reach - 2);
+      if (b_hi >= b_lo) {
+        const int n = b_hi - b_lo + 3;  // columns b_lo-1 .. b_hi+1
+        if (shear == 0) {
+          SadRow(R, L, col, b_lo - 1, yl, h, n, &acc, &sad);
+        } else {
+          SadRowSheared(R, L, col, b_lo - 1, yl, h, -shear, n, &acc);
+          sad.assign(acc.begin(), acc.end());
+        }
+        const int k = static_cast<int>(std::min_element(sad.begin() + 1, sad.end() - 1) - sad.begin());
+        const double back = b_lo - 1 + k + SubPixel(sad[k - 1], sad[k], sad[k + 1]);
+        if (std::abs(back - (xl - delta)) > opt_.lr_check_px) continue;
+      }
+    }
     const double u_r = grid.ToImageX(col + delta);
     const double disparity = kl.pt.x - u_r;
     if (disparity <= 0 || disparity > max_disp) continue;

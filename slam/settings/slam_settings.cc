@@ -71,6 +71,7 @@ void ReadStereo(YamlMapReader* m, StereoMatcherOptions* s) {
   m->Choice("subpixel", &s->subpixel, {"parabola", "equiangular"});
   m->Number("max_shear", &s->max_shear, NumberRange::Closed(0, 2));
   m->Number("shear_step", &s->shear_step, NumberRange::OpenClosed(0, 2));
+  m->Number("lr_check_px", &s->lr_check_px, NumberRange::Closed(0, 10));
   m->RejectUnknownKeys();
 }
 
@@ -289,6 +290,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitWord(out, "subpixel", s.stereo.subpixel);
   EmitNumber(out, "max_shear", s.stereo.max_shear);
   EmitNumber(out, "shear_step", s.stereo.shear_step);
+  EmitNumber(out, "lr_check_px", s.stereo.lr_check_px);
   out << YAML::EndMap;
 
   const TrackingSettings& t = s.tracking;
