@@ -330,7 +330,7 @@ TEST(Features, LeftRightCheckDropsOccludedMatchesOnly) {
               occluded, occluded_off, occluded_on, clear, clear_right, clear_same);
   ASSERT_GT(occluded, 200);
   EXPECT_GT(occluded_off, 0.9 * occluded);   // every row has some minimum: wrong depths without the check
-  EXPECT_LT(occluded_on, 0.5 * occluded);    // measured in the comment below
+  EXPECT_LT(occluded_on, 0.2 * occluded);    // measured 16 of 240
   EXPECT_EQ(clear_right, clear);             // the scene is matched right where it can be
   EXPECT_EQ(clear_same, clear);              // and the check leaves those matches alone
 }
