@@ -222,11 +222,15 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
     }
     const double delta = SubPixel(c0, c1, c2);
     if (std::abs(delta) > 1) continue;
+    const double u_r = grid.ToImageX(col + delta);
+    const double disparity = kl.pt.x - u_r;
+    if (disparity <= 0 || disparity > max_disp) continue;
     if (opt_.lr_check_px > 0) {
       // Back from the right patch at `col` along the left row, over the whole disparity range (the
       // same window, its shear mirrored onto the left image): the minimum should be the left
       // feature's column, less the forward match's sub-pixel offset. A match that is not mutual
-      // (the feature's surface hidden from the right camera, ambiguous texture) is dropped.
+      // (the feature's surface hidden from the right camera, ambiguous texture) is dropped. After
+      // the range test, which is cheap: this searches a whole row.
       const int reach = static_cast<int>(std::lround(std::abs(shear) * h));
       const int b_lo = std::max(col + 1, h + reach + 1);
       const int b_hi = std::min(col + static_cast<int>(std::floor(max_disp / grid.scale_x())), L.cols - h - reach - 2);
@@ -243,9 +247,6 @@ std::vector<StereoMatch> StereoMatcher::Match(const cv::Mat& left_grey, const cv
         if (std::abs(back - (xl - delta)) > opt_.lr_check_px) continue;
       }
     }
-    const double u_r = grid.ToImageX(col + delta);
-    const double disparity = kl.pt.x - u_r;
-    if (disparity <= 0 || disparity > max_disp) continue;
     best_sad[i] = c1;
     out[i].right_index = best_j;
     out[i].u_right = static_cast<float>(u_r);

@@ -35,10 +35,11 @@ struct StereoMatcherOptions {
   // shear in [-max_shear, max_shear] in steps of shear_step; 0 keeps the upright window only.
   double max_shear = 0;
   double shear_step = 0.2;
-  // Left-right check: the right patch at the match is searched back along the left row (the same
-  // window, upright or sheared); the match is dropped when the sub-pixel column found there is
-  // further than this from where the forward match says it lies (px at the feature's level; 0:
-  // off). Catches matches that are not mutual (ambiguous texture, occlusion).
+  // Left-right check: the right patch at the match is searched back along the left row over the
+  // whole disparity range (the same window, upright or sheared); the match is dropped when the
+  // sub-pixel column found there is further than this from where the forward match says it lies
+  // (px at the feature's level; 0: off). Catches matches that are not mutual (ambiguous texture,
+  // occlusion).
   double lr_check_px = 0;
   bool level_pixel_centres = false;  // the extractor's mapping of level pixels (orb.level_pixel_centres)
 };
