@@ -1,7 +1,7 @@
 // Dynamic objects (issue 7) on the shipped dynamic scenarios, live, with the truth of the
 // simulator: each test runs one scenario with the methods it compares (sync mapping, so every
 // figure is deterministic) and checks all of its figures on those runs. The bounds sit near the
-// figures measured on the landed code (in the comments) with about 2x margin on the error (README,
+// figures measured on the landed code (in the comments) with about 2x margin on the error (docs/MEASURED.md,
 // "Dynamic objects"); where issue 7's target is tighter than that and met, the target is the
 // bound. Targets not met (standing_people) are reported in the README, not hidden in a bound.
 // The runs use slam.mode visual_dynamic: the dynamic stage on vision alone. In mode full the leg
@@ -90,7 +90,7 @@ void ExpectDetection(const DynamicRun& r, double min_precision, double min_recal
   EXPECT_LE(r.dyn("latency_s_median"), max_latency_median_s);
 }
 
-// At seed 1, not the scenario's 7: since session 33 (the fusion check, README "Point fusion,
+// At seed 1, not the scenario's 7: since session 33 (the fusion check, docs/MEASURED.md "Point fusion,
 // session 33") the no-removal baseline tracks at 3.1 mm at seed 7, so no removal can beat it
 // there; at seeds 1, 2 and 3 it still fails (54.5, 45.0, 53.0 mm), as it did at 7 before (47.5).
 TEST(DynamicScenarios, WalkingPeople) {
@@ -113,7 +113,7 @@ TEST(DynamicScenarios, WalkingPeople) {
   // baseline (issue 8's target on walking_people: 0.7x vision alone). Against adaptive on vision
   // alone it measured 0.76x (2.9 / 3.8 mm) before session 8's change to adaptive and 1.15x
   // (3.9 / 3.4 mm) after it: issue 8's "full <= visual + 5%" is missed here against
-  // visual_dynamic (README, issue 8's figures); the bound below catches a further slide.
+  // visual_dynamic (docs/MEASURED.md, issue 8's figures); the bound below catches a further slide.
   const DynamicRun full = RunMethod("walking_people", "adaptive", "full", 1);
   std::printf("walking_people: full / none ATE = %.3f, full / visual_dynamic adaptive = %.3f\n",
               full.ate_m() / none.ate_m(), full.ate_m() / adaptive.ate_m());

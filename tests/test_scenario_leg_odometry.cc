@@ -1,5 +1,5 @@
 // Leg odometry + IMU and its fusion with vision (issue 8) on whole scenarios, against ground
-// truth. Bounds are the measured figures with about 2x margin (README, "Leg odometry + IMU").
+// truth. Bounds are the measured figures with about 2x margin (docs/MEASURED.md, "Leg odometry + IMU and fusion").
 //  - camera_dropout: a 5 s black-camera outage while walking; `full` carries the pose on the
 //    filter and resumes, `visual` dead-reckons on its last velocity.
 //  - static_room steered by the fused estimate (robot.command.follow: estimate) closes its 2 m
@@ -172,7 +172,7 @@ TEST(LegOdometryScenario, ClosedLoopOnTheEstimateClosesTheSquare) {
   EXPECT_GE(r.metrics["path_length_m"].as<double>(), 7.5);  // the whole square was walked
 }
 
-// ice_patches is the slip suite's case where the targets are missed (README, "Leg odometry +
+// ice_patches is the slip suite's case where the targets are missed (docs/MEASURED.md, "Leg odometry +
 // IMU"): the skids on its short ice strips are 20-40 ms at 0.05-0.15 m/s and look like the
 // landing itself through the encoders, and its leg-odometry drift is not the ice's (3.28% on the
 // same walk without ice). The bounds hold today's figures with about 2x margin on what each
@@ -201,11 +201,11 @@ TEST(LegOdometryScenario, IcePatchesSkidsAreFlaggedAndFusionStaysBelowVision) {
   EXPECT_LT(drift, 3.6);
   EXPECT_LE(drift, 1.05 * drift_ungated);
   // Measured 2.2 mm (full) against 2.7 mm (visual), 0.81x, until session 33; 3.1 against 2.4 mm
-  // (1.33x) since its fusion check (README "Point fusion, session 33"); 2.9 against 2.3 mm (1.25x)
+  // (1.33x) since its fusion check (docs/MEASURED.md "Point fusion, session 33"); 2.9 against 2.3 mm (1.25x)
   // in session 39. No lost frame in either.
   EXPECT_LT(ate_full, 0.0045);
   EXPECT_EQ(full.metrics["tracking"]["lost_frames"].as<int>(), 0);
-  // Issue 8's "full <= visual + 5%" over seeds 2-6, as the README measures it: one seed's ratio
+  // Issue 8's "full <= visual + 5%" over seeds 2-6, as docs/MEASURED.md measures it: one seed's ratio
   // moves between 0.40x and 1.25x (session 33), so a single seed's cannot hold the target.
   // Measured 2.58 against 3.39 mm (0.76x; 0.65x before session 33; target 0.7x); 2.11 against
   // 3.39 mm (0.62x) since session 38's defaults (held gravity, gyro bias from vision), and over

@@ -49,7 +49,7 @@ void ExpectAccuracy(const YAML::Node& m, double max_pct_path) {
 }
 
 // The Sim(3) keys: recomputed from the run's own trajectory files, and the scale error every
-// stereo run shares (README "Scale, session 29": the estimate is 0.2-0.4% short of the truth;
+// stereo run shares (docs/MEASURED.md "Scale, session 29": the estimate is 0.2-0.4% short of the truth;
 // scale 1.0018 on static_room and 1.0029 on long_loop when this was written; bound about 2x the
 // larger).
 void ExpectSim3(const YAML::Node& m, const std::string& tag) {

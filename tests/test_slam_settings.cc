@@ -195,7 +195,7 @@ TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   EXPECT_EQ(CountLeafKeys(text), kLeafKeys);
 }
 
-// The shipped opt-in file for the stereo matcher's accuracy options (README "Stereo defaults,
+// The shipped opt-in file for the stereo matcher's accuracy options (docs/MEASURED.md "Stereo defaults,
 // session 32") loads and changes exactly those keys.
 TEST_F(SlamSettingsTest, StereoGroundFileChangesOnlyTheStereoAccuracyKeys) {
   const fs::path path = fs::path(DefaultSlamSettingsPath()).parent_path() / "stereo_ground.yaml";

@@ -143,7 +143,7 @@ class KeyFrame {
   // Its good points with at least this observation weight, retired ones included: when a moving
   // object's points are retired the tracked share of the reference keyframe falls and a keyframe
   // comes sooner, with new points on what is still static. (Leaving them out was measured worse:
-  // standing_people `visual_dynamic`, seeds 1-9, 3.82 mm against 3.30; README, session 35.)
+  // standing_people `visual_dynamic`, seeds 1-9, 3.82 mm against 3.30; docs/MEASURED.md, session 35.)
   int TrackedPoints(int min_observations) const;
 };
 

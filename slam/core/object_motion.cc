@@ -213,7 +213,7 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   // A look of motion by the silhouette alone drops the object's features (tentatively) but does
   // not confirm it: a mask is one detector's word, and the confirmation culls map points and holds
   // the object; confirming by the mask made the standing_crowd run's keyframes fall on a trot's
-  // jolt, which then tracked 65 mm off (README, session 22).
+  // jolt, which then tracked 65 mm off (docs/MEASURED.md, session 22).
   const bool confirms = !last_.by_silhouette;
   if (last_.moving) run_start_ns_ = consecutive_moving_ == 1 ? ref_ns : std::min(run_start_ns_, ref_ns);
   if (changed_look ||
