@@ -80,7 +80,8 @@ LocalBaResult LocalBundleAdjustment(const StereoCamera& cam, const LocalBaOption
         if (k->bad || (!local_set.count(k) && !fixed_set.count(k))) continue;
         obs.push_back({k, p, idx});
         const FeaturePoint& kp = k->features->keypoints[idx];
-        problem.observations.push_back({pose_index.at(k), j, kp.pt.x, kp.pt.y, k->features->u_right[idx],
+        problem.observations.push_back({pose_index.at(k), j, kp.pt.x, kp.pt.y,
+                                        cam.OptimiserColumn(k->features->u_right[idx], k->features->depth[idx]),
                                         1.0 / k->features->level_scale[kp.octave]});
       }
     }

@@ -97,7 +97,7 @@ int OptimizePose(const StereoCamera& cam, const PoseOptimizerOptions& opt, Frame
     MapPoint* p = frame->points[i];
     if (!p || p->bad) continue;
     const FeaturePoint& kp = f.keypoints[i];
-    obs.push_back({static_cast<int>(i), p->p_w, kp.pt.x, kp.pt.y, f.u_right[i],
+    obs.push_back({static_cast<int>(i), p->p_w, kp.pt.x, kp.pt.y, cam.OptimiserColumn(f.u_right[i], f.depth[i]),
                    1.0 / f.level_scale[kp.octave]});
     frame->outlier[i] = false;
   }

@@ -75,6 +75,9 @@ void Tracker::SetCamera(const StereoFrame& frame) {
   cam_.bf = k.fx * baseline;
   cam_.close_depth_m = settings_.stereo.max_depth_baselines * baseline;
   if (rgbd) cam_.close_depth_m = std::min(cam_.close_depth_m, settings_.rgbd_max_depth_m);
+  // Stereo input only: an RGB-D camera's depth is measured, not matched (docs/MEASURED.md "Near
+  // stereo, session 41").
+  cam_.mono_below_depth_m = rgbd ? 0 : settings_.stereo.near_mono_baselines * baseline;
   matcher_ = std::make_unique<Matcher>(cam_, TrackerMatcherOptions(settings_));
   have_camera_ = true;
 }

@@ -41,6 +41,10 @@ struct StereoMatcherOptions {
   // (px at the feature's level; 0: off). Catches matches that are not mutual (ambiguous texture,
   // occlusion).
   double lr_check_px = 0;
+  // Not the matcher's: observations whose stereo depth is below this many baselines enter pose
+  // optimisation and local BA by their left-image position only (their depth still places new
+  // map points; 0: every stereo observation keeps its right-image column).
+  double near_mono_baselines = 0;
   bool level_pixel_centres = false;  // the extractor's mapping of level pixels (orb.level_pixel_centres)
 };
 

@@ -72,6 +72,7 @@ void ReadStereo(YamlMapReader* m, StereoMatcherOptions* s) {
   m->Number("max_shear", &s->max_shear, NumberRange::Closed(0, 2));
   m->Number("shear_step", &s->shear_step, NumberRange::OpenClosed(0, 2));
   m->Number("lr_check_px", &s->lr_check_px, NumberRange::Closed(0, 10));
+  m->Number("near_mono_baselines", &s->near_mono_baselines, NumberRange::Closed(0, 1000));
   m->RejectUnknownKeys();
 }
 
@@ -291,6 +292,7 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "max_shear", s.stereo.max_shear);
   EmitNumber(out, "shear_step", s.stereo.shear_step);
   EmitNumber(out, "lr_check_px", s.stereo.lr_check_px);
+  EmitNumber(out, "near_mono_baselines", s.stereo.near_mono_baselines);
   out << YAML::EndMap;
 
   const TrackingSettings& t = s.tracking;
