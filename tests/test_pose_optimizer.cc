@@ -1,6 +1,8 @@
 // Pose-only optimisation (slam/core/pose_optimizer.h) on synthetic observations: the known
 // pose is recovered from a perturbed start, gross outliers are flagged and do not pull it, and
 // monocular-only observations work as stereo ones do.
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <random>
 #include <vector>
@@ -93,7 +95,8 @@ TEST(PoseOptimizer, NoiseFreeObservationsGiveTheExactPose) {
 // are 1.5 px too far left (the disparity too large: the near floor's bias, exaggerated), the rest
 // exact: with the cut the pose is exact, without it the biased depths pull it.
 TEST(PoseOptimizer, NearObservationsLeaveTheirRightColumnOutBelowTheCut) {
-  auto solve = [](double mono_below_depth_m) {
+  // `right_scale`: StereoCamera::near_right_scale, sqrt(stereo.near_right_weight).
+  auto solve = [](double mono_below_depth_m, double right_scale) {
     Scene s;
     MakeScene(100, 0.0, true, &s);
     auto f = std::make_shared<FrameFeatures>(*s.frame.features);
@@ -109,13 +112,21 @@ TEST(PoseOptimizer, NearObservationsLeaveTheirRightColumnOutBelowTheCut) {
     s.frame.T_c_w = Eigen::Translation3d(0.02, 0.01, -0.02) * s.T_c_w;
     StereoCamera cam = testing::SyntheticStereoCamera();
     cam.mono_below_depth_m = mono_below_depth_m;
+    cam.near_right_scale = right_scale;
     OptimizePose(cam, PoseOptimizerOptions{}, &s.frame);
     return 1000 * (s.frame.T_c_w * s.T_c_w.inverse()).translation().norm();
   };
-  const double with_cut_mm = solve(2.0), without_mm = solve(0.0);
+  const double with_cut_mm = solve(2.0, 0.0), without_mm = solve(0.0, 0.0);
   std::printf("position error with the cut %.6f mm, without %.3f mm\n", with_cut_mm, without_mm);
   EXPECT_LT(with_cut_mm, 1e-4);
   EXPECT_GT(without_mm, 1.8);  // measured 3.59 mm: half of it
+  // stereo.near_right_weight: the near right columns kept at a tenth of the weight pull the pose
+  // part of the way; at weight 1 the cut changes nothing.
+  const double weighted_mm = solve(2.0, std::sqrt(0.1));
+  std::printf("at weight 0.1 %.3f mm\n", weighted_mm);
+  EXPECT_GT(weighted_mm, 0.3);               // measured 0.614 mm
+  EXPECT_LT(weighted_mm, 0.35 * without_mm);  // measured 0.17x
+  EXPECT_EQ(solve(2.0, 1.0), without_mm);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ class Solver {
     double cost = 0;
     Residual res;
     for (const BaObservation& o : pb_.observations) {
-      EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, poses[o.pose], points[o.point], false, &res);
+      EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, poses[o.pose], points[o.point], false, &res, o.wr);
       cost += HuberCost(res.r.squaredNorm(), o.ur >= 0 ? opt_.huber_stereo : opt_.huber_mono, nullptr);
     }
     return cost;
@@ -54,7 +54,7 @@ class Solver {
       Eigen::Vector3d g = Eigen::Vector3d::Zero();
       for (int k = by_point_begin_[j]; k < by_point_begin_[j + 1]; ++k) {
         const BaObservation& o = pb_.observations[order_[k]];
-        EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, poses[o.pose], points[j], true, &res);
+        EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, poses[o.pose], points[j], true, &res, o.wr);
         double wt;
         HuberCost(res.r.squaredNorm(), o.ur >= 0 ? opt_.huber_stereo : opt_.huber_mono, &wt);
         const Eigen::Matrix3d JxT_w = wt * res.J_point.transpose();

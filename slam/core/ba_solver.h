@@ -19,7 +19,7 @@ namespace viqu::slam {
 struct BaObservation {
   int pose = 0;
   int point = 0;
-  double u = 0, v = 0, ur = -1, w = 1;
+  double u = 0, v = 0, ur = -1, w = 1, wr = 1;
 };
 
 struct BaProblem {

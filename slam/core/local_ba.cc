@@ -82,7 +82,8 @@ LocalBaResult LocalBundleAdjustment(const StereoCamera& cam, const LocalBaOption
         const FeaturePoint& kp = k->features->keypoints[idx];
         problem.observations.push_back({pose_index.at(k), j, kp.pt.x, kp.pt.y,
                                         cam.OptimiserColumn(k->features->u_right[idx], k->features->depth[idx]),
-                                        1.0 / k->features->level_scale[kp.octave]});
+                                        1.0 / k->features->level_scale[kp.octave],
+                                        cam.RightScale(k->features->depth[idx])});
       }
     }
   }

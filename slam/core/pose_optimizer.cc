@@ -18,6 +18,7 @@ struct Obs {
   Eigen::Vector3d p_w;
   double u, v, ur;  // measured pixel and right-image column (< 0: monocular)
   double w;         // 1 / level scale: the residual in units of the level's pixel
+  double wr;
 };
 
 // Levenberg-Marquardt on the 6-dof pose, written out: analytic Jacobians of the pinhole (and
@@ -39,7 +40,7 @@ class PoseSolver {
       if (!use_[k]) continue;
       const Obs& o = obs_[k];
       Residual res;
-      EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, T, o.p_w, H != nullptr, &res);
+      EvaluateReprojection(cam_, o.u, o.v, o.ur, o.w, T, o.p_w, H != nullptr, &res, o.wr);
       double weight = 1.0;
       const double s = res.r.squaredNorm();
       cost += robust ? HuberCost(s, o.ur >= 0 ? huber_stereo : huber_mono, &weight) : s;
@@ -98,7 +99,7 @@ int OptimizePose(const StereoCamera& cam, const PoseOptimizerOptions& opt, Frame
     if (!p || p->bad) continue;
     const FeaturePoint& kp = f.keypoints[i];
     obs.push_back({static_cast<int>(i), p->p_w, kp.pt.x, kp.pt.y, cam.OptimiserColumn(f.u_right[i], f.depth[i]),
-                   1.0 / f.level_scale[kp.octave]});
+                   1.0 / f.level_scale[kp.octave], cam.RightScale(f.depth[i])});
     frame->outlier[i] = false;
   }
   if (obs.size() < 3) return 0;

@@ -21,10 +21,11 @@ struct Residual {
   Eigen::Matrix3d J_point;
 };
 
-// `u`, `v`: the measured pixel, `ur`: the right image's column (< 0: monocular), `w`: 1 / level scale.
+// `u`, `v`: the measured pixel, `ur`: the right image's column (< 0: monocular), `w`: 1 / level scale,
+// `wr`: a further scale of the right-column row (StereoCamera::RightScale).
 inline void EvaluateReprojection(const StereoCamera& cam, double u_obs, double v_obs, double ur, double w,
                                  const Eigen::Isometry3d& T, const Eigen::Vector3d& P, bool jacobians,
-                                 Residual* out) {
+                                 Residual* out, double wr = 1.0) {
   const Eigen::Vector3d p = T * P;
   const bool clamped = p.z() < 1e-4;
   const double z = clamped ? 1e-4 : p.z();
@@ -32,7 +33,7 @@ inline void EvaluateReprojection(const StereoCamera& cam, double u_obs, double v
   const double u = cam.fx * p.x() * inv_z + cam.cx;
   const double v = cam.fy * p.y() * inv_z + cam.cy;
   const bool stereo = ur >= 0;
-  out->r << (u - u_obs) * w, (v - v_obs) * w, stereo ? (u - cam.bf * inv_z - ur) * w : 0.0;
+  out->r << (u - u_obs) * w, (v - v_obs) * w, stereo ? (u - cam.bf * inv_z - ur) * w * wr : 0.0;
   if (!jacobians) return;
   Eigen::Matrix3d Jp = Eigen::Matrix3d::Zero();  // d r / d p
   const double inv_z2 = inv_z * inv_z;
@@ -43,6 +44,7 @@ inline void EvaluateReprojection(const StereoCamera& cam, double u_obs, double v
   if (stereo) {
     Jp(2, 0) = cam.fx * inv_z;
     Jp(2, 2) = (cam.bf - cam.fx * p.x()) * inv_z2;
+    Jp.row(2) *= wr;
   }
   if (clamped) Jp.col(2).setZero();  // the clamp makes the residual flat in z there
   Jp *= w;
