@@ -4,7 +4,9 @@
 //    DENSE_SCHUR: what local BA ran before) - the same cost and the same poses and points;
 //  - it recovers the true poses from perturbed ones, with gross outliers that the Huber kernel
 //    keeps from pulling, and held keyframes stay where they are;
-//  - monocular observations (no right column) count as two rows.
+//  - monocular observations (no right column) count as two rows;
+//  - an observation's right-column weight (BaObservation::wr) sets how far a biased right
+//    column pulls.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -205,6 +207,39 @@ TEST(BaSolver, MonocularOnlyObservationsConverge) {
   const BaSolverSummary sum = SolveBundleAdjustment(cam, opt, &ours);
   const double ceres_cost = SolveWithCeres(cam, opt, &theirs);
   EXPECT_NEAR(0.5 * sum.final_cost, ceres_cost, 1e-6 * ceres_cost);
+}
+
+// stereo.near_right_weight_ba: local BA scales the right-column row of near observations by
+// wr = sqrt(weight) (StereoCamera::RightScale). Noise-free observations whose right column is
+// 1.5 px too far left (the disparity too large) wherever the point is nearer than 2.5 m to the
+// keyframe: at wr 1 they pull the free keyframes; at wr 0 the row is void and the solution is
+// the truth; a tenth of the weight pulls part of the way.
+TEST(BaSolver, RightColumnWeightSetsHowFarABiasedColumnPulls) {
+  const StereoCamera cam = testing::SyntheticStereoCamera();
+  auto solve = [&](double wr) {
+    Scene s = MakeScene(8, 2, 400, 0.0, false, 4);
+    int biased = 0;
+    for (BaObservation& o : s.problem.observations) {
+      if (o.ur < 0 || (s.truth.poses[o.pose] * s.truth.points[o.point]).z() >= 2.5) continue;
+      o.ur -= 1.5;
+      o.wr = wr;
+      ++biased;
+    }
+    EXPECT_GT(biased, 100);
+    BaSolverOptions opt;
+    opt.iterations = 100;
+    opt.function_tolerance = 1e-14;
+    SolveBundleAdjustment(cam, opt, &s.problem);
+    double worst = 0;
+    for (int k = 0; k < s.problem.free_poses; ++k) worst = std::max(worst, PoseError(s.problem.poses[k], s.truth.poses[k]));
+    return 1000 * worst;
+  };
+  const double full_mm = solve(1.0), void_mm = solve(0.0), tenth_mm = solve(std::sqrt(0.1));
+  std::printf("worst free keyframe: weight 1 %.3f mm, 0.1 %.3f mm, 0 %.6f mm\n", full_mm, tenth_mm, void_mm);
+  EXPECT_LT(void_mm, 1e-3);
+  EXPECT_GT(full_mm, 12);               // measured 23.7 mm
+  EXPECT_LT(tenth_mm, 0.45 * full_mm);  // measured 0.23x (5.4 mm)
+  EXPECT_GT(tenth_mm, 2.5);
 }
 
 }  // namespace

@@ -95,7 +95,7 @@ TEST(PoseOptimizer, NoiseFreeObservationsGiveTheExactPose) {
 // are 1.5 px too far left (the disparity too large: the near floor's bias, exaggerated), the rest
 // exact: with the cut the pose is exact, without it the biased depths pull it.
 TEST(PoseOptimizer, NearObservationsLeaveTheirRightColumnOutBelowTheCut) {
-  // `right_scale`: StereoCamera::near_right_scale, sqrt(stereo.near_right_weight).
+  // `right_scale`: StereoCamera::near_right_scale, sqrt(stereo.near_right_weight_tracking).
   auto solve = [](double mono_below_depth_m, double right_scale) {
     Scene s;
     MakeScene(100, 0.0, true, &s);
@@ -120,7 +120,7 @@ TEST(PoseOptimizer, NearObservationsLeaveTheirRightColumnOutBelowTheCut) {
   std::printf("position error with the cut %.6f mm, without %.3f mm\n", with_cut_mm, without_mm);
   EXPECT_LT(with_cut_mm, 1e-4);
   EXPECT_GT(without_mm, 1.8);  // measured 3.59 mm: half of it
-  // stereo.near_right_weight: the near right columns kept at a tenth of the weight pull the pose
+  // stereo.near_right_weight_tracking: the near right columns kept at a tenth of the weight pull the pose
   // part of the way; at weight 1 the cut changes nothing.
   const double weighted_mm = solve(2.0, std::sqrt(0.1));
   std::printf("at weight 0.1 %.3f mm\n", weighted_mm);

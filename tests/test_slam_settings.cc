@@ -79,7 +79,8 @@ void ExpectSameSettings(const SlamSettings& a, const SlamSettings& b) {
   EXPECT_EQ(a.stereo.shear_step, b.stereo.shear_step);
   EXPECT_EQ(a.stereo.lr_check_px, b.stereo.lr_check_px);
   EXPECT_EQ(a.stereo.near_mono_baselines, b.stereo.near_mono_baselines);
-  EXPECT_EQ(a.stereo.near_right_weight, b.stereo.near_right_weight);
+  EXPECT_EQ(a.stereo.near_right_weight_tracking, b.stereo.near_right_weight_tracking);
+  EXPECT_EQ(a.stereo.near_right_weight_ba, b.stereo.near_right_weight_ba);
 
   const TrackingSettings& ta = a.tracking;
   const TrackingSettings& tb = b.tracking;
@@ -183,7 +184,7 @@ int CountLeafKeys(const std::string& yaml) {
 
 // The number of fields of SlamSettings that are keys (all but source_file); dynamic: 9 + 3 priors + 23 adaptive;
 // lo: 32.
-constexpr int kLeafKeys = 4 + 7 + 16 + 30 + 9 + 9 + 3 + 23 + 33;
+constexpr int kLeafKeys = 4 + 7 + 17 + 30 + 9 + 9 + 3 + 23 + 33;
 
 TEST_F(SlamSettingsTest, DefaultFileEqualsStructDefaults) {
   const std::string path = DefaultSlamSettingsPath();
@@ -248,7 +249,8 @@ TEST_F(SlamSettingsTest, NonDefaultValuesRoundTrip) {
   s.stereo.shear_step = 0.05;
   s.stereo.lr_check_px = 0.75;
   s.stereo.near_mono_baselines = 12.5;
-  s.stereo.near_right_weight = 0.125;
+  s.stereo.near_right_weight_tracking = 0.125;
+  s.stereo.near_right_weight_ba = 0.375;
   s.tracking = {12.5, 3.25, 90, 0.8, 25, 15, 8, 1.5, 3, 30, 2, 0.6, 50, 35};
   s.mapping.mode = "realtime";
   s.mapping.ba_window = 7;

@@ -14,7 +14,9 @@ struct StereoCamera {
   // right-image column's residual scaled by near_right_scale, or without that column where the
   // scale is 0 (m; 0: none). stereo.near_mono_baselines times the baseline.
   double mono_below_depth_m = 0;
-  double near_right_scale = 0;  // sqrt(stereo.near_right_weight): scales that row's residual and Jacobian
+  // sqrt(stereo.near_right_weight_tracking, or _ba in the local mapper's copy): scales that row's
+  // residual and Jacobian.
+  double near_right_scale = 0;
   // The right-image column an optimiser should use for an observation (-1: monocular).
   float OptimiserColumn(float u_right, float depth) const {
     return depth < mono_below_depth_m && near_right_scale == 0 ? -1.f : u_right;

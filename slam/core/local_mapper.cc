@@ -43,6 +43,9 @@ LocalMapper::LocalMapper(const StereoCamera& cam, const SlamSettings& settings, 
   ba_opt_.window = settings.mapping.ba_window;
   ba_opt_.iterations = settings.mapping.ba_iterations;
   ba_opt_.huber_px = settings.mapping.ba_huber_px;
+  // Local BA's own weight of near observations' right column (the tracker's camera carries the
+  // pose optimiser's).
+  cam_.near_right_scale = std::sqrt(settings.stereo.near_right_weight_ba);
   realtime_ = settings.mapping.mode == "realtime";
   if (realtime_) thread_ = std::thread([this] { ThreadLoop(); });
 }

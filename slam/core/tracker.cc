@@ -78,7 +78,7 @@ void Tracker::SetCamera(const StereoFrame& frame) {
   // Stereo input only: an RGB-D camera's depth is measured, not matched (docs/MEASURED.md "Near
   // stereo, session 41").
   cam_.mono_below_depth_m = rgbd ? 0 : settings_.stereo.near_mono_baselines * baseline;
-  cam_.near_right_scale = std::sqrt(settings_.stereo.near_right_weight);
+  cam_.near_right_scale = std::sqrt(settings_.stereo.near_right_weight_tracking);
   matcher_ = std::make_unique<Matcher>(cam_, TrackerMatcherOptions(settings_));
   have_camera_ = true;
 }

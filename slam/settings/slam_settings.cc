@@ -73,7 +73,8 @@ void ReadStereo(YamlMapReader* m, StereoMatcherOptions* s) {
   m->Number("shear_step", &s->shear_step, NumberRange::OpenClosed(0, 2));
   m->Number("lr_check_px", &s->lr_check_px, NumberRange::Closed(0, 10));
   m->Number("near_mono_baselines", &s->near_mono_baselines, NumberRange::Closed(0, 1000));
-  m->Number("near_right_weight", &s->near_right_weight, NumberRange::Closed(0, 1));
+  m->Number("near_right_weight_tracking", &s->near_right_weight_tracking, NumberRange::Closed(0, 1));
+  m->Number("near_right_weight_ba", &s->near_right_weight_ba, NumberRange::Closed(0, 1));
   m->RejectUnknownKeys();
 }
 
@@ -294,7 +295,8 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitNumber(out, "shear_step", s.stereo.shear_step);
   EmitNumber(out, "lr_check_px", s.stereo.lr_check_px);
   EmitNumber(out, "near_mono_baselines", s.stereo.near_mono_baselines);
-  EmitNumber(out, "near_right_weight", s.stereo.near_right_weight);
+  EmitNumber(out, "near_right_weight_tracking", s.stereo.near_right_weight_tracking);
+  EmitNumber(out, "near_right_weight_ba", s.stereo.near_right_weight_ba);
   out << YAML::EndMap;
 
   const TrackingSettings& t = s.tracking;
