@@ -590,7 +590,8 @@ TEST(SlamSystem, ABoxThatFillsMostOfTheViewIsJudgedByTheStaticScene) {
   ASSERT_GE(decided_at, kStill);
   EXPECT_LE(decided_at, kStill + 10);  // measured 6 frames (3.3 cm)
   EXPECT_LT(worst_m, 0.08);            // measured 41.3 mm
-  EXPECT_LT(last_m, 0.013);            // measured 6.5 mm
+  EXPECT_LT(last_m, 0.013);            // measured 6.5 mm; 12.82 mm in session 42 (13.37 with
+                                       // slam/config/near_floor.yaml)
 }
 
 TEST(SlamSystem, RefusesFramesOutOfOrderOrIncomplete) {
