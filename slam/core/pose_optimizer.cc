@@ -18,7 +18,7 @@ struct Obs {
   Eigen::Vector3d p_w;
   double u, v, ur;  // measured pixel and right-image column (< 0: monocular)
   double w;         // 1 / level scale: the residual in units of the level's pixel
-  double wr;
+  double wr;        // scale of the right-column row (StereoCamera::RightScale)
 };
 
 // Levenberg-Marquardt on the 6-dof pose, written out: analytic Jacobians of the pinhole (and

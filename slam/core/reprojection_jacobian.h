@@ -25,7 +25,7 @@ struct Residual {
 // `wr`: a further scale of the right-column row (StereoCamera::RightScale).
 inline void EvaluateReprojection(const StereoCamera& cam, double u_obs, double v_obs, double ur, double w,
                                  const Eigen::Isometry3d& T, const Eigen::Vector3d& P, bool jacobians,
-                                 Residual* out, double wr = 1.0) {
+                                 Residual* out, double wr) {
   const Eigen::Vector3d p = T * P;
   const bool clamped = p.z() < 1e-4;
   const double z = clamped ? 1e-4 : p.z();
