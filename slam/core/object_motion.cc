@@ -140,6 +140,21 @@ void ObjectMotionTrack::LookAtSilhouette(const ObjectSnapshot& snapshot, const A
   last_.lag_s = (snapshot.t_ns - ref->t_ns) * 1e-9;
 }
 
+int64_t ObjectMotionTrack::UnmovedUntilNs(int64_t t_ns) const {
+  // Both looks compare the object with where it stood up to lag_s earlier, so after the onset t0
+  // their displacements grow as v (t - t0): the line through the still look's (t_s, d_s) and this
+  // look of motion's (t, d) meets zero at t0 = t_s - d_s (t - t_s) / (d - d_s). The still look's
+  // displacement is at least its noise (a norm), which moves t0 earlier, never later. Without it
+  // the date is t_s, by which a crate at 0.1 m/s has moved up to 1.5 cm (the still look allows up
+  // to stop_max_m, and its displacement is measured with the tracked pose that the object drags
+  // along): keyframes of that stretch kept their observations of a box that had moved.
+  if (last_unmoved_ns_ <= 0 || !last_.moving || t_ns <= last_unmoved_ns_ || last_.displacement_m <= last_unmoved_m_) {
+    return last_unmoved_ns_;
+  }
+  const double back_ns = last_unmoved_m_ * static_cast<double>(t_ns - last_unmoved_ns_) / (last_.displacement_m - last_unmoved_m_);
+  return std::max(last_unmoved_ref_ns_, last_unmoved_ns_ - static_cast<int64_t>(back_ns));
+}
+
 void ObjectMotionTrack::RestartMeasurements() {
   history_.clear();
   consecutive_moving_ = 0;
@@ -218,7 +233,9 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   if (last_.moving) run_start_ns_ = consecutive_moving_ == 1 ? ref_ns : std::min(run_start_ns_, ref_ns);
   if (changed_look ||
       (last_.moving && (dynamic_ || recently_dynamic || (confirms && consecutive_moving_ >= s.confirm_frames)))) {
-    if (!dynamic_) motion_onset_ns_ = std::max(last_unmoved_ns_, changed_look && !last_.moving ? t_ns - lag_ns : run_start_ns_);
+    if (!dynamic_) {
+      motion_onset_ns_ = std::max(UnmovedUntilNs(t_ns), changed_look && !last_.moving ? t_ns - lag_ns : run_start_ns_);
+    }
     last_motion_ns_ = t_ns;
     last_motion_ref_ns_ = ref_ns;
     moved_ = true;
@@ -237,7 +254,11 @@ bool ObjectMotionTrack::Add(ObjectSnapshot snapshot, const AdaptiveDynamicSettin
   }
   // Released only after hold_s and a judgement that it stands still: an object that moved and
   // then cannot be judged (too few matches, too far for stereo to rule motion out) stays dynamic.
-  if (last_.still && last_.displacement_m < s.stop_max_m) last_unmoved_ns_ = t_ns;
+  if (last_.still && last_.displacement_m < s.stop_max_m) {
+    last_unmoved_ns_ = t_ns;
+    last_unmoved_ref_ns_ = ref_ns;
+    last_unmoved_m_ = last_.displacement_m;
+  }
   const bool was_dynamic = dynamic_;
   dynamic_ = moved_ && (t_ns - last_motion_ns_ <= static_cast<int64_t>(s.hold_s * 1e9) || !static_since_motion_);
   if (was_dynamic && !dynamic_) released_ns_ = t_ns;

@@ -118,6 +118,9 @@ class ObjectMotionTrack {
                              // transient mismatch), 0 when not, -1 not yet measured
   };
   // The silhouette's look (see Add): makes last_ a look of motion when the mask moved.
+  // When the object last stood (ns), for the onset of the motion that this look confirms: the
+  // still look's end, moved back along the displacement's growth to where it meets zero.
+  int64_t UnmovedUntilNs(int64_t t_ns) const;
   void LookAtSilhouette(const ObjectSnapshot& snapshot, const AdaptiveDynamicSettings& s, const StereoCamera* cam);
 
   std::deque<Past> history_;  // oldest first, all within lag_s of the newest
@@ -129,6 +132,8 @@ class ObjectMotionTrack {
   int consecutive_moving_ = 0;       // judgements of motion in a row
   int64_t run_start_ns_ = 0;         // start of the first look of that run
   int64_t last_unmoved_ns_ = 0;      // end of the last look judged still within stop_max_m
+  int64_t last_unmoved_ref_ns_ = 0;  // its start
+  double last_unmoved_m_ = 0;        // its median displacement (m)
   int64_t motion_onset_ns_ = 0;      // see motion_onset_ns()
   int unjudged_after_release_ = 0;   // looks in a row within hold_s of the release that could not be judged
   bool moved_ = false;
