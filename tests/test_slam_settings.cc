@@ -214,20 +214,6 @@ TEST_F(SlamSettingsTest, StereoGroundFileChangesOnlyTheStereoAccuracyKeys) {
   EXPECT_NE(s.stereo.max_shear, SlamSettings().stereo.max_shear);
 }
 
-// The shipped opt-in file for the near floor's stereo (docs/MEASURED.md "Near stereo in local BA,
-// session 42") loads and changes exactly those keys.
-TEST_F(SlamSettingsTest, NearFloorFileChangesOnlyTheNearStereoKeys) {
-  const fs::path path = fs::path(DefaultSlamSettingsPath()).parent_path() / "near_floor.yaml";
-  ASSERT_TRUE(fs::is_regular_file(path)) << path;
-  const SlamSettings s = LoadSlamSettings(path.string());
-  SlamSettings expected;
-  expected.stereo.near_mono_baselines = 8.75;
-  expected.stereo.near_right_weight_tracking = 1;
-  expected.stereo.near_right_weight_ba = 0.03;
-  ExpectSameSettings(s, expected);
-  EXPECT_NE(s.stereo.near_mono_baselines, SlamSettings().stereo.near_mono_baselines);  // not already the defaults
-}
-
 TEST_F(SlamSettingsTest, EmptyFileGivesDefaults) {
   const SlamSettings s = LoadSlamSettings(Write("slam.yaml", ""));
   ExpectSameSettings(s, SlamSettings());

@@ -44,13 +44,14 @@ struct StereoMatcherOptions {
   // Not the matcher's: observations whose stereo depth is below this many baselines enter pose
   // optimisation and local BA with their right-image column weighted as below, or by their
   // left-image position only where the weight is 0 (their depth still places new map points;
-  // 0: every stereo observation keeps its right-image column at full weight).
-  double near_mono_baselines = 0;
+  // 0: every stereo observation keeps its right-image column at full weight). 8.75 is 0.35 m on the
+  // rat: its near floor's stereo leans near (docs/MEASURED.md, sessions 41-43).
+  double near_mono_baselines = 8.75;
   // The weight (information, 1 / sigma^2, relative to a far observation's) of those near
   // observations' right-image column in the tracker's pose optimisation and in local BA; 0
   // leaves it out.
-  double near_right_weight_tracking = 0;
-  double near_right_weight_ba = 0;
+  double near_right_weight_tracking = 1;
+  double near_right_weight_ba = 0.03;
   bool level_pixel_centres = false;  // the extractor's mapping of level pixels (orb.level_pixel_centres)
 };
 
