@@ -151,8 +151,12 @@ int64_t ObjectMotionTrack::UnmovedUntilNs(int64_t t_ns) const {
   if (last_unmoved_ns_ <= 0 || !last_.moving || t_ns <= last_unmoved_ns_ || last_.displacement_m <= last_unmoved_m_) {
     return last_unmoved_ns_;
   }
-  const double back_ns = last_unmoved_m_ * static_cast<double>(t_ns - last_unmoved_ns_) / (last_.displacement_m - last_unmoved_m_);
-  return std::max(last_unmoved_ref_ns_, last_unmoved_ns_ - static_cast<int64_t>(back_ns));
+  // Clamped to the still look's span before the cast: a look of motion by the silhouette may
+  // carry a displacement barely above the still look's, which would send the line far back.
+  const double span_ns = static_cast<double>(last_unmoved_ns_ - last_unmoved_ref_ns_);
+  const double back_ns = std::min(
+      span_ns, last_unmoved_m_ * static_cast<double>(t_ns - last_unmoved_ns_) / (last_.displacement_m - last_unmoved_m_));
+  return last_unmoved_ns_ - static_cast<int64_t>(back_ns);
 }
 
 void ObjectMotionTrack::RestartMeasurements() {
