@@ -117,10 +117,10 @@ class ObjectMotionTrack {
     int jumps_to_next = -1;  // 1 when the next snapshot differs from it faster than max_speed_mps (a
                              // transient mismatch), 0 when not, -1 not yet measured
   };
-  // The silhouette's look (see Add): makes last_ a look of motion when the mask moved.
   // When the object last stood (ns), for the onset of the motion that this look confirms: the
   // still look's end, moved back along the displacement's growth to where it meets zero.
   int64_t UnmovedUntilNs(int64_t t_ns) const;
+  // The silhouette's look (see Add): makes last_ a look of motion when the mask moved.
   void LookAtSilhouette(const ObjectSnapshot& snapshot, const AdaptiveDynamicSettings& s, const StereoCamera* cam);
 
   std::deque<Past> history_;  // oldest first, all within lag_s of the newest
