@@ -158,7 +158,10 @@ struct SlamConfig {                  // slam
   // `slam.lo.*` keys present in the scenario (key, value as written), in file order: leg-odometry
   // settings (slam/config/default.yaml, block lo) for this scenario.
   std::vector<std::pair<std::string, std::string>> lo;
-  // The `slam.mode` / `slam.dynamic.*` / `slam.lo.*` keys present in the scenario, as
+  // `slam.stereo.*` keys present in the scenario (key, value as written), in file order: the
+  // stereo matcher's and the near observations' settings (slam/config/default.yaml, block stereo).
+  std::vector<std::pair<std::string, std::string>> stereo;
+  // The `slam.mode` / `slam.dynamic.*` / `slam.lo.*` / `slam.stereo.*` keys present in the scenario, as
   // SLAM-settings overrides ("mode=full", "dynamic.alpha=1.5"), applied on top of the settings
   // file in that order.
   std::vector<std::string> settings_overrides;

@@ -374,6 +374,19 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   }
   for (const auto& [key, value] : s->lo) s->settings_overrides.push_back("lo." + key + "=" + value);
   lo.RejectUnknownKeys();
+  // slam.stereo: the same checks as slam.lo (kinds here, ranges when the run starts).
+  YamlMapReader stereo = m.Map("stereo");
+  std::string subpixel;
+  if (stereo.Choice("subpixel", &subpixel, {"parabola", "equiangular"})) s->stereo.emplace_back("subpixel", subpixel);
+  for (const char* key : {"max_hamming", "row_band_px", "sad_half_window", "sad_search_px", "max_ratio", "min_depth_m",
+                          "max_depth_baselines", "scale_factor", "sad_outlier_factor", "sad_uniqueness", "max_shear",
+                          "shear_step", "lr_check_px", "near_mono_baselines", "near_right_weight_tracking",
+                          "near_right_weight_ba"}) {
+    double v = 0;
+    if (stereo.Number(key, &v, NumberRange::NonNegative())) s->stereo.emplace_back(key, YamlNumberText(v));
+  }
+  for (const auto& [key, value] : s->stereo) s->settings_overrides.push_back("stereo." + key + "=" + value);
+  stereo.RejectUnknownKeys();
   m.RejectUnknownKeys();
 }
 

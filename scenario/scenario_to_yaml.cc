@@ -184,6 +184,11 @@ void Slam(YAML::Emitter& out, const SlamConfig& s) {
     for (const auto& [key, value] : s.lo) out << YAML::Key << key << YAML::Value << value;
     out << YAML::EndMap;
   }
+  if (!s.stereo.empty()) {
+    out << YAML::Key << "stereo" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    for (const auto& [key, value] : s.stereo) out << YAML::Key << key << YAML::Value << value;
+    out << YAML::EndMap;
+  }
   out << YAML::EndMap;
 }
 

@@ -1,4 +1,5 @@
-// The scenario's slam.lo and slam.dynamic keys mirror the SLAM settings' lo.* and dynamic.* keys.
+// The scenario's slam.lo, slam.dynamic and slam.stereo keys mirror the SLAM settings' lo.*, dynamic.*
+// and stereo.* keys.
 // The scenario loader cannot depend on the SLAM library, so it lists those keys itself
 // (scenario_loader.cc); this test links both and checks that every such setting the SLAM
 // settings write can be set from a scenario, reaches the SLAM settings and is written back into
@@ -83,6 +84,53 @@ TEST(SettingsKeys, EveryDynamicObjectSettingCanBeSetFromAScenario) {
   }
   EXPECT_GE(leaves.size(), 27u);  // 27 dynamic keys when written (method, 7 of eq. 1-4, forget_s,
                                   // keep_past_observations, 3 priors, 15 adaptive)
+}
+
+TEST(SettingsKeys, EveryStereoSettingCanBeSetFromAScenario) {
+  const slam::SlamSettings defaults = slam::LoadSlamSettings(slam::DefaultSlamSettingsPath());
+  const YAML::Node stereo = YAML::Load(slam::SlamSettingsToYaml(defaults))["stereo"];
+  ASSERT_TRUE(stereo && stereo.IsMap());
+  const std::string scenario = std::string(VIQU_SOURCE_DIR) + "/scenarios/static_room.yaml";
+  int keys = 0;
+  for (const auto& kv : stereo) {
+    const std::string key = kv.first.as<std::string>();
+    const std::string value = kv.second.as<std::string>();
+    SCOPED_TRACE("slam.stereo." + key);
+    Scenario s;
+    ASSERT_NO_THROW(s = LoadScenario(scenario, {"slam.stereo." + key + "=" + value}));
+    bool passed_on = false;
+    for (const std::string& o : s.slam.settings_overrides) passed_on = passed_on || o.rfind("stereo." + key + "=", 0) == 0;
+    EXPECT_TRUE(passed_on);
+    EXPECT_NO_THROW(slam::LoadSlamSettings(slam::DefaultSlamSettingsPath(), s.slam.settings_overrides));
+    const YAML::Node written = YAML::Load(ScenarioToYaml(s))["slam"]["stereo"][key];
+    ASSERT_TRUE(written && written.IsScalar());
+    if (key == "subpixel") {
+      EXPECT_EQ(written.as<std::string>(), value);
+    } else {
+      EXPECT_DOUBLE_EQ(written.as<double>(), std::stod(value));
+    }
+    ++keys;
+  }
+  EXPECT_GE(keys, 17);  // 17 stereo keys when written
+}
+
+TEST(SettingsKeys, AScenariosStereoKeyChangesTheSettings) {
+  const std::string scenario = std::string(VIQU_SOURCE_DIR) + "/scenarios/static_room.yaml";
+  const Scenario s = LoadScenario(scenario, {"slam.stereo.near_mono_baselines=0", "slam.stereo.max_hamming=60"});
+  const slam::SlamSettings settings = slam::LoadSlamSettings(slam::DefaultSlamSettingsPath(), s.slam.settings_overrides);
+  EXPECT_EQ(settings.stereo.near_mono_baselines, 0);
+  EXPECT_EQ(settings.stereo.max_hamming, 60);
+  const slam::SlamSettings defaults = slam::LoadSlamSettings(slam::DefaultSlamSettingsPath());
+  EXPECT_GT(defaults.stereo.near_mono_baselines, 0);
+  EXPECT_NE(defaults.stereo.max_hamming, 60);
+  // Out of range is the SLAM settings' error, naming the key.
+  const Scenario bad = LoadScenario(scenario, {"slam.stereo.near_right_weight_ba=2"});
+  try {
+    slam::LoadSlamSettings(slam::DefaultSlamSettingsPath(), bad.slam.settings_overrides);
+    FAIL() << "a weight of 2 was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("near_right_weight_ba"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SettingsKeys, AMisspeltAdaptiveKeyIsAnErrorAtItsLine) {
