@@ -45,6 +45,12 @@ void YamlMapReader::MarkKnown(const std::string& key) {
 
 bool YamlMapReader::Has(const std::string& key) const { return Find(key) != nullptr; }
 
+std::string YamlMapReader::Where(const std::string& key) const {
+  const Entry* e = Find(key);
+  if (e) return src_->Where(KeyPath(key), e->value);
+  return src_->Where(KeyPath(key), (node_.IsDefined() && !node_.IsNull()) ? node_ : location_);
+}
+
 YAML::Node YamlMapReader::Get(const std::string& key) {
   MarkKnown(key);
   const Entry* e = Find(key);

@@ -51,6 +51,9 @@ class YamlMapReader {
   bool NumberList(const std::string& key, std::vector<double>* out, size_t size,
                   const NumberRange& range = NumberRange::Any(), size_t min_size = 0);
 
+  // Where `key`'s value came from ("FILE:LINE:COL" or "--set ..."; the map's location when absent).
+  std::string Where(const std::string& key) const;
+
   // Throws "unknown key 'a.b' (expected one of: ...)" for the first key that no getter asked for.
   void RejectUnknownKeys() const;
 

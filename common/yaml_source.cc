@@ -15,8 +15,8 @@ bool IsPathPrefix(const std::string& prefix, const std::string& path) {
 
 YamlSource::YamlSource(std::string file) : file_(std::move(file)) {}
 
-void YamlSource::AddOverride(const std::string& key_path, const std::string& assignment) {
-  overrides_.emplace_back(key_path, assignment);
+void YamlSource::AddOverride(const std::string& key_path, const std::string& where) {
+  overrides_.emplace_back(key_path, where);
 }
 
 std::string YamlSource::Where(const std::string& key_path, const YAML::Node& node) const {
@@ -24,7 +24,7 @@ std::string YamlSource::Where(const std::string& key_path, const YAML::Node& nod
   // the way to a deeper key, is where the value came from.
   for (auto it = overrides_.rbegin(); it != overrides_.rend(); ++it) {
     if (IsPathPrefix(it->first, key_path) || IsPathPrefix(key_path, it->first)) {
-      return "--set " + it->second;
+      return it->second;
     }
   }
   if (node.IsDefined()) {

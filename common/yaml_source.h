@@ -17,8 +17,9 @@ class YamlSource {
 
   const std::string& file() const { return file_; }
 
-  // Records that `assignment` ("a.b=value") wrote the subtree at `key_path` ("a.b").
-  void AddOverride(const std::string& key_path, const std::string& assignment);
+  // Records that an override wrote the subtree at `key_path` ("a.b"); `where` is what messages
+  // about it start with ("--set a.b=value", or the file and line it was read from).
+  void AddOverride(const std::string& key_path, const std::string& where);
 
   // The location of `node`, read as key `key_path` (dotted, list elements by index:
   // "obstacles.0.speed_mps"). A key written or created by an override reports the override.
@@ -30,7 +31,7 @@ class YamlSource {
 
  private:
   std::string file_;  // path as the user gave it
-  std::vector<std::pair<std::string, std::string>> overrides_;  // (key path, assignment), in order
+  std::vector<std::pair<std::string, std::string>> overrides_;  // (key path, where), in order
 };
 
 // "parent.key", or "key" when parent is empty.

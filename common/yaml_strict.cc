@@ -124,8 +124,9 @@ YAML::Node LoadYamlText(const std::string& text, const std::string& name) {
   return ParseText(text, name);
 }
 
-void ApplyYamlOverride(YAML::Node* root, const std::string& assignment, YamlSource* src) {
-  const std::string where = "--set " + assignment;
+void ApplyYamlOverride(YAML::Node* root, const std::string& assignment, YamlSource* src,
+                       const std::string& origin) {
+  const std::string where = origin.empty() ? "--set " + assignment : origin;
   const size_t eq = assignment.find('=');
   if (eq == std::string::npos) throw InputError(where + ": expected key.path=value");
   const std::string key_path = assignment.substr(0, eq);
@@ -179,7 +180,7 @@ void ApplyYamlOverride(YAML::Node* root, const std::string& assignment, YamlSour
     cur.reset(next);
     walked = here;
   }
-  src->AddOverride(key_path, assignment);
+  src->AddOverride(key_path, where);
 }
 
 std::string DescribeYamlValue(const YAML::Node& node) {

@@ -36,8 +36,11 @@ YAML::Node LoadYamlText(const std::string& text, const std::string& name);
 // Applies one override "key.path=value" to `root` (a map): the value is parsed as YAML (so
 // "[]", "10", "{a: 1}" work), map keys along the path are created when missing, list
 // elements are addressed by index ("obstacles.0.speed_mps"). Records the override in `src`
-// so that errors about keys it wrote name it. Malformed overrides throw InputError.
-void ApplyYamlOverride(YAML::Node* root, const std::string& assignment, YamlSource* src);
+// so that errors about keys it wrote name it: `origin` when given (e.g. "scenario.yaml:28:5",
+// for an override that a scenario's key made), else "--set key.path=value". Malformed overrides
+// throw InputError.
+void ApplyYamlOverride(YAML::Node* root, const std::string& assignment, YamlSource* src,
+                       const std::string& origin = "");
 
 // How a node looks in a message: "'abc'" for a scalar, "a list", "a map", "nothing".
 std::string DescribeYamlValue(const YAML::Node& node);

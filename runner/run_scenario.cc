@@ -134,7 +134,9 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
     // otherwise (its overrides come after).
     std::vector<std::string> overrides{"lo.imu_sampling=" + s.sensors.imu.sampling};
     overrides.insert(overrides.end(), s.slam.settings_overrides.begin(), s.slam.settings_overrides.end());
-    settings = slam::LoadSlamSettings(settings_path, overrides);
+    std::vector<std::string> origins{s.source_file + " (sensors.imu.sampling)"};
+    origins.insert(origins.end(), s.slam.settings_override_origins.begin(), s.slam.settings_override_origins.end());
+    settings = slam::LoadSlamSettings(settings_path, overrides, origins);
     const std::string pyramid = slam::PyramidProblem(settings->orb.scale_factor, settings->orb.num_levels,
                                                      s.sensors.camera.width, s.sensors.camera.height);
     if (!pyramid.empty()) throw InputError(settings->pyramid_where + ": " + pyramid);

@@ -165,6 +165,9 @@ struct SlamConfig {                  // slam
   // SLAM-settings overrides ("mode=full", "dynamic.alpha=1.5"), applied on top of the settings
   // file in that order.
   std::vector<std::string> settings_overrides;
+  // Where each of settings_overrides was read ("FILE:LINE:COL", or the `--set` that wrote it),
+  // for the SLAM settings' messages about its value.
+  std::vector<std::string> settings_override_origins;
 };
 
 struct Scenario {

@@ -293,16 +293,21 @@ void ReadTerrain(YamlMapReader m, TerrainConfig* t) {
 }
 
 void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
-  if (m.Choice("mode", &s->mode, kSlamModes)) s->settings_overrides.push_back("mode=" + s->mode);
+  // Each present key becomes a SLAM settings override, with where it was read for messages.
+  auto add = [s](std::string assignment, std::string origin) {
+    s->settings_overrides.push_back(std::move(assignment));
+    s->settings_override_origins.push_back(std::move(origin));
+  };
+  if (m.Choice("mode", &s->mode, kSlamModes)) add("mode=" + s->mode, m.Where("mode"));
   ReadFilePath(&m, "config", base_dir, &s->config);
   YamlMapReader d = m.Map("dynamic");
   // Present keys become overrides of the SLAM settings' `dynamic.*` (the settings file holds the
   // defaults for the rest).
   auto number = [&](const char* key, double* v, const NumberRange& range) {
-    if (d.Number(key, v, range)) s->settings_overrides.push_back(std::string("dynamic.") + key + "=" + YamlNumberText(*v));
+    if (d.Number(key, v, range)) add(std::string("dynamic.") + key + "=" + YamlNumberText(*v), d.Where(key));
   };
   if (d.Choice("method", &s->dynamic.method, kDynamicMethods)) {
-    s->settings_overrides.push_back("dynamic.method=" + s->dynamic.method);
+    add("dynamic.method=" + s->dynamic.method, d.Where("method"));
   }
   number("alpha", &s->dynamic.alpha, NumberRange::NonNegative());
   number("beta", &s->dynamic.beta, NumberRange::NonNegative());
@@ -310,20 +315,25 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   number("th_d", &s->dynamic.th_d, NumberRange::NonNegative());
   number("window_s", &s->dynamic.window_s, NumberRange::Positive());
   if (d.Integer("window_n", &s->dynamic.window_n, NumberRange::Closed(2, 10000))) {
-    s->settings_overrides.push_back("dynamic.window_n=" + std::to_string(s->dynamic.window_n));
+    add("dynamic.window_n=" + std::to_string(s->dynamic.window_n), d.Where("window_n"));
   }
   // The rest of the block: as for slam.lo below, the keys and their kinds are checked here, each
   // value's range by the SLAM settings loader when the run starts.
+  std::vector<std::string> more_origins;  // where each of s->dynamic.more was read
   auto more = [&](YamlMapReader* r, const std::string& prefix, std::initializer_list<const char*> keys) {
     for (const char* key : keys) {
       double v = 0;
-      if (r->Number(key, &v, NumberRange::NonNegative())) s->dynamic.more.emplace_back(prefix + key, YamlNumberText(v));
+      if (r->Number(key, &v, NumberRange::NonNegative())) {
+        s->dynamic.more.emplace_back(prefix + key, YamlNumberText(v));
+        more_origins.push_back(r->Where(key));
+      }
     }
   };
   more(&d, "", {"forget_s"});
   bool keep_past = true;
   if (d.Bool("keep_past_observations", &keep_past)) {
     s->dynamic.more.emplace_back("keep_past_observations", keep_past ? "true" : "false");
+    more_origins.push_back(d.Where("keep_past_observations"));
   }
   YamlMapReader prior = d.Map("prior");
   more(&prior, "prior.", {"person", "box", "ball"});
@@ -338,10 +348,13 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
     int v = 0;
     if (adaptive.Integer(key, &v, NumberRange::NonNegative())) {
       s->dynamic.more.emplace_back(std::string("adaptive.") + key, std::to_string(v));
+      more_origins.push_back(adaptive.Where(key));
     }
   }
   adaptive.RejectUnknownKeys();
-  for (const auto& [key, value] : s->dynamic.more) s->settings_overrides.push_back("dynamic." + key + "=" + value);
+  for (size_t i = 0; i < s->dynamic.more.size(); ++i) {
+    add("dynamic." + s->dynamic.more[i].first + "=" + s->dynamic.more[i].second, more_origins[i]);
+  }
   d.RejectUnknownKeys();
   // slam.lo: the leg-odometry settings. The SLAM settings loader checks each value's range when
   // the run starts; here the keys and their kinds are checked, so that a misspelt key is an error
@@ -372,7 +385,7 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
     double v = 0;
     if (lo.Number(key, &v, NumberRange::NonNegative())) s->lo.emplace_back(key, YamlNumberText(v));
   }
-  for (const auto& [key, value] : s->lo) s->settings_overrides.push_back("lo." + key + "=" + value);
+  for (const auto& [key, value] : s->lo) add("lo." + key + "=" + value, lo.Where(key));
   lo.RejectUnknownKeys();
   // slam.stereo: the same checks as slam.lo (kinds here, ranges when the run starts).
   YamlMapReader stereo = m.Map("stereo");
@@ -385,7 +398,7 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
     double v = 0;
     if (stereo.Number(key, &v, NumberRange::NonNegative())) s->stereo.emplace_back(key, YamlNumberText(v));
   }
-  for (const auto& [key, value] : s->stereo) s->settings_overrides.push_back("stereo." + key + "=" + value);
+  for (const auto& [key, value] : s->stereo) add("stereo." + key + "=" + value, stereo.Where(key));
   stereo.RejectUnknownKeys();
   m.RejectUnknownKeys();
 }

@@ -111,6 +111,24 @@ TEST_F(BadInput, ScenarioChecksRunBeforeTheSimulation) {
   ExpectNoOutput();
 }
 
+// A scenario's slam.* key whose value the SLAM settings refuse (the scenario loader checks only
+// its kind): the message names the scenario's line and column, or the --set that wrote it.
+TEST_F(BadInput, ASlamSettingFromAScenarioIsNamedWhereItWasWritten) {
+  const std::string stereo = ScenarioWith(dir_, "stereo.yaml", "  stereo: {near_right_weight_ba: 3}\n");
+  ExpectBadInput(RunViqu("run " + stereo + " --out " + out_), stereo + ":" + std::to_string(LineCount(stereo)) + ":",
+                 "'stereo.near_right_weight_ba' expected a number in [0, 1], got '3'");
+  const std::string lo = ScenarioWith(dir_, "lo.yaml", "  lo:\n    accel_noise: 0.3\n    attitude_gain: 500\n");
+  ExpectBadInput(RunViqu("run " + lo + " --out " + out_), lo + ":" + std::to_string(LineCount(lo)) + ":",
+                 "'lo.attitude_gain' expected a number in [0, 100], got '500'");
+  const std::string adaptive =
+      ScenarioWith(dir_, "adaptive.yaml", "  dynamic:\n    th_d: 0.1\n    adaptive: {static_pose_min_share: 2}\n");
+  ExpectBadInput(RunViqu("run " + adaptive + " --out " + out_),
+                 adaptive + ":" + std::to_string(LineCount(adaptive)) + ":", "static_pose_min_share");
+  ExpectBadInput(RunViqu("run " + kScenario + " --out " + out_ + " --set slam.stereo.near_right_weight_ba=3"),
+                 "--set slam.stereo.near_right_weight_ba=3", "expected a number in [0, 1], got '3'");
+  ExpectNoOutput();
+}
+
 TEST_F(BadInput, OutputFolderThatCannotBeARunFolder) {
   WriteText(dir_ / "file", "x");
   ExpectBadInput(RunViqu("run " + kScenario + " --out " + (dir_ / "file").string()), "output folder " + (dir_ / "file").string(),

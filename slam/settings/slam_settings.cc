@@ -215,10 +215,13 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
 
 }  // namespace
 
-SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides) {
+SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides,
+                              const std::vector<std::string>& origins) {
   YamlSource src(path);
   YAML::Node root = LoadYamlFile(path);
-  for (const std::string& o : overrides) ApplyYamlOverride(&root, o, &src);
+  for (size_t i = 0; i < overrides.size(); ++i) {
+    ApplyYamlOverride(&root, overrides[i], &src, i < origins.size() ? origins[i] : std::string());
+  }
 
   SlamSettings s;
   s.source_file = fs::absolute(path).lexically_normal().string();

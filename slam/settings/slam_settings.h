@@ -217,7 +217,10 @@ struct SlamSettings {
 
 // Reads settings from `path`. Keys not in the file keep their defaults; `overrides` are
 // "key.path=value" strings applied before reading (as `--set`). Throws InputError.
-SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides = {});
+// `origins[i]`, where given, is where overrides[i] came from, for messages about it (a scenario's
+// key: "FILE:LINE:COL"); otherwise messages name it as "--set ...".
+SlamSettings LoadSlamSettings(const std::string& path, const std::vector<std::string>& overrides = {},
+                              const std::vector<std::string>& origins = {});
 
 // Path of slam/config/default.yaml in the source tree.
 std::string DefaultSlamSettingsPath();
