@@ -10,6 +10,7 @@
 
 #include "common/errors.h"
 #include "common/yaml_strict.h"
+#include "runner/scenario_settings.h"
 #include "scenario/scenario_loader.h"
 
 namespace viqu::app {
@@ -132,14 +133,17 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   if (points > kMaxPoints) {
     throw InputError(path + ": the sweep expands to more than " + std::to_string(kMaxPoints) + " points");
   }
-  // Every point's --set list against its scenario: a key or value `viqu run` would reject is
-  // reported now, with the point, before anything runs. The loads also give the names.
+  // Every point's --set list against its scenario and the SLAM settings it makes: a key or value
+  // `viqu run` would reject is reported now, with the point, before anything runs. The loads
+  // also give the names.
   spec.scenario_names.assign(spec.scenarios.size(), "");
   for (const SweepPoint& p : ExpandSweep(spec)) {
     const size_t s = static_cast<size_t>(std::find(spec.scenarios.begin(), spec.scenarios.end(), p.scenario) -
                                          spec.scenarios.begin());
     try {
-      spec.scenario_names[s] = LoadScenario(p.scenario, p.sets).name;
+      const Scenario scenario = LoadScenario(p.scenario, p.sets);
+      runner::ScenarioSlamSettings(scenario);
+      spec.scenario_names[s] = scenario.name;
     } catch (const InputError& e) {
       throw InputError(path + ": point " + p.id + " (" + p.scenario + "): " + e.what());
     }

@@ -19,6 +19,7 @@
 #include "runner/progress.h"
 #include "runner/robot_rig.h"
 #include "runner/run_metrics.h"
+#include "runner/scenario_settings.h"
 #include "runner/sensor_clock.h"
 #include "runner/slam_run.h"
 #include "common/atomic_file.h"
@@ -124,22 +125,11 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   if (s.robot.command.follow == "estimate" && !opt.slam) {
     throw InputError(s.source_file + ": robot.command.follow: estimate needs the estimator; it cannot run with --no-slam");
   }
-  // SLAM settings: the settings file with the scenario's slam.mode / slam.dynamic keys on top; the
-  // resolved scenario records the values in effect.
+  // SLAM settings (scenario_settings.h); the resolved scenario records the values in effect.
   std::optional<slam::SlamSettings> settings;
   Scenario resolved = s;
   if (opt.slam) {
-    const std::string settings_path = s.slam.config.empty() ? slam::DefaultSlamSettingsPath() : s.slam.config;
-    // The estimator integrates the IMU as the scenario's IMU samples it, unless slam.lo says
-    // otherwise (its overrides come after).
-    std::vector<std::string> overrides{"lo.imu_sampling=" + s.sensors.imu.sampling};
-    overrides.insert(overrides.end(), s.slam.settings_overrides.begin(), s.slam.settings_overrides.end());
-    std::vector<std::string> origins{s.source_file + " (sensors.imu.sampling)"};
-    origins.insert(origins.end(), s.slam.settings_override_origins.begin(), s.slam.settings_override_origins.end());
-    settings = slam::LoadSlamSettings(settings_path, overrides, origins);
-    const std::string pyramid = slam::PyramidProblem(settings->orb.scale_factor, settings->orb.num_levels,
-                                                     s.sensors.camera.width, s.sensors.camera.height);
-    if (!pyramid.empty()) throw InputError(settings->pyramid_where + ": " + pyramid);
+    settings = ScenarioSlamSettings(s);
     const slam::DynamicSettings& d = settings->dynamic;
     resolved.slam.mode = settings->mode;
     // (the other dynamic keys are written as the scenario gave them; slam_settings.yaml holds all)

@@ -91,6 +91,12 @@ TEST_F(SweepTest, BadSweepFilesNameFileLineAndColumn) {
   const std::string range = ErrorOf(s + "grid: {sensors.camera.fovy_deg: [60, 179]}\n");
   EXPECT_NE(range.find("point p0001"), std::string::npos) << range;
   EXPECT_NE(range.find("--set sensors.camera.fovy_deg=179"), std::string::npos) << range;
+  // ... and one the SLAM settings would reject when the run starts (the scenario checks only
+  // the key and its kind): named now, not after the other points have run.
+  const std::string weight = ErrorOf(s + "grid: {slam.stereo.near_right_weight_ba: [0.03, 2]}\n");
+  EXPECT_NE(weight.find("point p0001"), std::string::npos) << weight;
+  EXPECT_NE(weight.find("--set slam.stereo.near_right_weight_ba=2: key 'stereo.near_right_weight_ba' expected a number in [0, 1]"),
+            std::string::npos) << weight;
 }
 
 // A complete run folder with the given metrics.json and exit code.
