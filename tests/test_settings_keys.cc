@@ -17,26 +17,53 @@
 namespace viqu {
 namespace {
 
-TEST(SettingsKeys, EveryLegOdometrySettingCanBeSetFromAScenario) {
+// Sets each key of the SLAM settings' block `block` (a flat map: lo, stereo) from a scenario as
+// `slam.<block>.<key>` at its default value, and checks that the scenario passes it on as a
+// settings override the settings accept and writes it back into scenario.yaml. Returns the
+// number of keys.
+int ExpectEveryKeySettableFromAScenario(const std::string& block) {
   const slam::SlamSettings defaults = slam::LoadSlamSettings(slam::DefaultSlamSettingsPath());
-  const YAML::Node lo = YAML::Load(slam::SlamSettingsToYaml(defaults))["lo"];
-  ASSERT_TRUE(lo && lo.IsMap());
+  const YAML::Node map = YAML::Load(slam::SlamSettingsToYaml(defaults))[block];
+  EXPECT_TRUE(map && map.IsMap());
+  if (!map || !map.IsMap()) return 0;
   const std::string scenario = std::string(VIQU_SOURCE_DIR) + "/scenarios/static_room.yaml";
   int keys = 0;
-  for (const auto& kv : lo) {
+  for (const auto& kv : map) {
     const std::string key = kv.first.as<std::string>();
     const std::string value = kv.second.as<std::string>();
-    SCOPED_TRACE("slam.lo." + key);
+    SCOPED_TRACE("slam." + block + "." + key);
     Scenario s;
-    ASSERT_NO_THROW(s = LoadScenario(scenario, {"slam.lo." + key + "=" + value}));
-    // The scenario passes it on as a SLAM settings override, which the settings accept.
+    try {
+      s = LoadScenario(scenario, {"slam." + block + "." + key + "=" + value});
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what();
+      continue;
+    }
     bool passed_on = false;
-    for (const std::string& o : s.slam.settings_overrides) passed_on = passed_on || o.rfind("lo." + key + "=", 0) == 0;
+    for (const std::string& o : s.slam.settings_overrides) passed_on = passed_on || o.rfind(block + "." + key + "=", 0) == 0;
     EXPECT_TRUE(passed_on);
     EXPECT_NO_THROW(slam::LoadSlamSettings(slam::DefaultSlamSettingsPath(), s.slam.settings_overrides));
+    const YAML::Node written = YAML::Load(ScenarioToYaml(s))["slam"][block][key];
+    EXPECT_TRUE(written && written.IsScalar());
+    if (written && written.IsScalar()) {
+      double number = 0;
+      if (YAML::convert<double>::decode(kv.second, number)) {
+        EXPECT_DOUBLE_EQ(written.as<double>(), number);
+      } else {
+        EXPECT_EQ(written.as<std::string>(), value);
+      }
+    }
     ++keys;
   }
-  EXPECT_GE(keys, 26);  // 26 lo keys when written
+  return keys;
+}
+
+TEST(SettingsKeys, EveryLegOdometrySettingCanBeSetFromAScenario) {
+  EXPECT_GE(ExpectEveryKeySettableFromAScenario("lo"), 26);  // 26 lo keys when written
+}
+
+TEST(SettingsKeys, EveryStereoSettingCanBeSetFromAScenario) {
+  EXPECT_GE(ExpectEveryKeySettableFromAScenario("stereo"), 17);  // 17 stereo keys when written
 }
 
 // The leaves of a YAML map as (dotted path, value).
@@ -84,34 +111,6 @@ TEST(SettingsKeys, EveryDynamicObjectSettingCanBeSetFromAScenario) {
   }
   EXPECT_GE(leaves.size(), 27u);  // 27 dynamic keys when written (method, 7 of eq. 1-4, forget_s,
                                   // keep_past_observations, 3 priors, 15 adaptive)
-}
-
-TEST(SettingsKeys, EveryStereoSettingCanBeSetFromAScenario) {
-  const slam::SlamSettings defaults = slam::LoadSlamSettings(slam::DefaultSlamSettingsPath());
-  const YAML::Node stereo = YAML::Load(slam::SlamSettingsToYaml(defaults))["stereo"];
-  ASSERT_TRUE(stereo && stereo.IsMap());
-  const std::string scenario = std::string(VIQU_SOURCE_DIR) + "/scenarios/static_room.yaml";
-  int keys = 0;
-  for (const auto& kv : stereo) {
-    const std::string key = kv.first.as<std::string>();
-    const std::string value = kv.second.as<std::string>();
-    SCOPED_TRACE("slam.stereo." + key);
-    Scenario s;
-    ASSERT_NO_THROW(s = LoadScenario(scenario, {"slam.stereo." + key + "=" + value}));
-    bool passed_on = false;
-    for (const std::string& o : s.slam.settings_overrides) passed_on = passed_on || o.rfind("stereo." + key + "=", 0) == 0;
-    EXPECT_TRUE(passed_on);
-    EXPECT_NO_THROW(slam::LoadSlamSettings(slam::DefaultSlamSettingsPath(), s.slam.settings_overrides));
-    const YAML::Node written = YAML::Load(ScenarioToYaml(s))["slam"]["stereo"][key];
-    ASSERT_TRUE(written && written.IsScalar());
-    if (key == "subpixel") {
-      EXPECT_EQ(written.as<std::string>(), value);
-    } else {
-      EXPECT_DOUBLE_EQ(written.as<double>(), std::stod(value));
-    }
-    ++keys;
-  }
-  EXPECT_GE(keys, 17);  // 17 stereo keys when written
 }
 
 TEST(SettingsKeys, AScenariosStereoKeyChangesTheSettings) {
