@@ -137,12 +137,19 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   // `viqu run` would reject is reported now, with the point, before anything runs. The loads
   // also give the names.
   spec.scenario_names.assign(spec.scenarios.size(), "");
+  std::set<std::string> settings_checked;  // what the SLAM settings depend on, per checked point
   for (const SweepPoint& p : ExpandSweep(spec)) {
     const size_t s = static_cast<size_t>(std::find(spec.scenarios.begin(), spec.scenarios.end(), p.scenario) -
                                          spec.scenarios.begin());
     try {
       const Scenario scenario = LoadScenario(p.scenario, p.sets);
-      runner::ScenarioSlamSettings(scenario);
+      // Points that differ only in what the settings do not read (the seed, most often) are
+      // checked once.
+      std::string depends = scenario.slam.config + "\n" + scenario.sensors.imu.sampling + "\n" +
+                            std::to_string(scenario.sensors.camera.width) + "x" +
+                            std::to_string(scenario.sensors.camera.height);
+      for (const std::string& o : scenario.slam.settings_overrides) depends += "\n" + o;
+      if (settings_checked.insert(depends).second) runner::ScenarioSlamSettings(scenario);
       spec.scenario_names[s] = scenario.name;
     } catch (const InputError& e) {
       throw InputError(path + ": point " + p.id + " (" + p.scenario + "): " + e.what());
