@@ -137,7 +137,7 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   // `viqu run` would reject is reported now, with the point, before anything runs. The loads
   // also give the names.
   spec.scenario_names.assign(spec.scenarios.size(), "");
-  std::set<std::string> settings_checked;  // what the SLAM settings depend on, per checked point
+  std::set<std::string> settings_checked;  // ScenarioSettingsInputs::Key of the points checked
   for (const SweepPoint& p : ExpandSweep(spec)) {
     const size_t s = static_cast<size_t>(std::find(spec.scenarios.begin(), spec.scenarios.end(), p.scenario) -
                                          spec.scenarios.begin());
@@ -145,11 +145,8 @@ SweepSpec LoadSweepSpec(const std::string& path) {
       const Scenario scenario = LoadScenario(p.scenario, p.sets);
       // Points that differ only in what the settings do not read (the seed, most often) are
       // checked once.
-      std::string depends = scenario.slam.config + "\n" + scenario.sensors.imu.sampling + "\n" +
-                            std::to_string(scenario.sensors.camera.width) + "x" +
-                            std::to_string(scenario.sensors.camera.height);
-      for (const std::string& o : scenario.slam.settings_overrides) depends += "\n" + o;
-      if (settings_checked.insert(depends).second) runner::ScenarioSlamSettings(scenario);
+      const runner::ScenarioSettingsInputs inputs = runner::SettingsInputsOf(scenario);
+      if (settings_checked.insert(inputs.Key()).second) runner::LoadScenarioSettings(inputs);
       spec.scenario_names[s] = scenario.name;
     } catch (const InputError& e) {
       throw InputError(path + ": point " + p.id + " (" + p.scenario + "): " + e.what());

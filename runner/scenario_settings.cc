@@ -7,17 +7,29 @@
 
 namespace viqu::runner {
 
-slam::SlamSettings ScenarioSlamSettings(const Scenario& s) {
-  const std::string path = s.slam.config.empty() ? slam::DefaultSlamSettingsPath() : s.slam.config;
+ScenarioSettingsInputs SettingsInputsOf(const Scenario& s) {
+  ScenarioSettingsInputs in;
+  in.path = s.slam.config.empty() ? slam::DefaultSlamSettingsPath() : s.slam.config;
   // The estimator integrates the IMU as the scenario's IMU samples it, unless slam.lo says
   // otherwise (its overrides come after).
-  std::vector<std::string> overrides{"lo.imu_sampling=" + s.sensors.imu.sampling};
-  overrides.insert(overrides.end(), s.slam.settings_overrides.begin(), s.slam.settings_overrides.end());
-  std::vector<std::string> origins{s.source_file + " (sensors.imu.sampling)"};
-  origins.insert(origins.end(), s.slam.settings_override_origins.begin(), s.slam.settings_override_origins.end());
-  slam::SlamSettings settings = slam::LoadSlamSettings(path, overrides, origins);
-  const std::string pyramid = slam::PyramidProblem(settings.orb.scale_factor, settings.orb.num_levels,
-                                                   s.sensors.camera.width, s.sensors.camera.height);
+  in.overrides = {"lo.imu_sampling=" + s.sensors.imu.sampling};
+  in.overrides.insert(in.overrides.end(), s.slam.settings_overrides.begin(), s.slam.settings_overrides.end());
+  in.origins = {s.source_file + " (sensors.imu.sampling)"};
+  in.origins.insert(in.origins.end(), s.slam.settings_override_origins.begin(), s.slam.settings_override_origins.end());
+  in.width = s.sensors.camera.width;
+  in.height = s.sensors.camera.height;
+  return in;
+}
+
+std::string ScenarioSettingsInputs::Key() const {
+  std::string key = path + "\n" + std::to_string(width) + "x" + std::to_string(height);
+  for (const std::string& o : overrides) key += "\n" + o;
+  return key;
+}
+
+slam::SlamSettings LoadScenarioSettings(const ScenarioSettingsInputs& in) {
+  slam::SlamSettings settings = slam::LoadSlamSettings(in.path, in.overrides, in.origins);
+  const std::string pyramid = slam::PyramidProblem(settings.orb.scale_factor, settings.orb.num_levels, in.width, in.height);
   if (!pyramid.empty()) throw InputError(settings.pyramid_where + ": " + pyramid);
   return settings;
 }

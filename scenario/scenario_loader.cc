@@ -319,21 +319,20 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   }
   // The rest of the block: as for slam.lo below, the keys and their kinds are checked here, each
   // value's range by the SLAM settings loader when the run starts.
-  std::vector<std::string> more_origins;  // where each of s->dynamic.more was read
+  auto add_more = [&](const YamlMapReader& r, const std::string& prefix, const char* key, const std::string& value) {
+    s->dynamic.more.emplace_back(prefix + key, value);
+    add("dynamic." + prefix + key + "=" + value, r.Where(key));
+  };
   auto more = [&](YamlMapReader* r, const std::string& prefix, std::initializer_list<const char*> keys) {
     for (const char* key : keys) {
       double v = 0;
-      if (r->Number(key, &v, NumberRange::NonNegative())) {
-        s->dynamic.more.emplace_back(prefix + key, YamlNumberText(v));
-        more_origins.push_back(r->Where(key));
-      }
+      if (r->Number(key, &v, NumberRange::NonNegative())) add_more(*r, prefix, key, YamlNumberText(v));
     }
   };
   more(&d, "", {"forget_s"});
   bool keep_past = true;
   if (d.Bool("keep_past_observations", &keep_past)) {
-    s->dynamic.more.emplace_back("keep_past_observations", keep_past ? "true" : "false");
-    more_origins.push_back(d.Where("keep_past_observations"));
+    add_more(d, "", "keep_past_observations", keep_past ? "true" : "false");
   }
   YamlMapReader prior = d.Map("prior");
   more(&prior, "prior.", {"person", "box", "ball"});
@@ -346,15 +345,9 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   for (const char* key : {"confirm_frames", "drop_frames", "min_matches", "interior_px", "max_hamming",
                           "changed_look_frames", "static_pose_outliers", "silhouette_min_rows"}) {
     int v = 0;
-    if (adaptive.Integer(key, &v, NumberRange::NonNegative())) {
-      s->dynamic.more.emplace_back(std::string("adaptive.") + key, std::to_string(v));
-      more_origins.push_back(adaptive.Where(key));
-    }
+    if (adaptive.Integer(key, &v, NumberRange::NonNegative())) add_more(adaptive, "adaptive.", key, std::to_string(v));
   }
   adaptive.RejectUnknownKeys();
-  for (size_t i = 0; i < s->dynamic.more.size(); ++i) {
-    add("dynamic." + s->dynamic.more[i].first + "=" + s->dynamic.more[i].second, more_origins[i]);
-  }
   d.RejectUnknownKeys();
   // slam.lo: the leg-odometry settings. The SLAM settings loader checks each value's range when
   // the run starts; here the keys and their kinds are checked, so that a misspelt key is an error
