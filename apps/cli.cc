@@ -32,7 +32,7 @@ const char* const kRunUsage =
     "                     outputs, slower: for comparison and profiling)\n";
 const char* const kSlamUsage =
     "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--camera FILE] [--out DIR] [--force]\n"
-    "          [--masks DIR] [--set key.path=value ...]\n"
+    "          [--masks DIR] [--skip-bad-frames] [--set key.path=value ...]\n"
     "    replay a recorded run folder or a public dataset through SLAM\n"
     "    --format F       viqu (a run folder written with --record; default), euroc (EuRoC MAV,\n"
     "                     rectified on reading), tum (TUM RGB-D; tracks in rgbd mode)\n"
@@ -44,6 +44,8 @@ const char* const kSlamUsage =
     "    --force          let --out replace a non-empty folder that holds no viqu run\n"
     "    --masks DIR      per-frame 16-bit instance PNGs named like the images, plus\n"
     "                     DIR/instances.csv (id,category,name); see docs/MASKS.md\n"
+    "    --skip-bad-frames  skip a lone frame whose images cannot be read (warned, counted in\n"
+    "                     metrics.json camera.frames_skipped) instead of stopping with exit 2\n"
     "    --set K=V        override a SLAM settings key (repeatable), e.g. --set tracking.min_inliers=40\n";
 const char* const kEvalUsage =
     "viqu eval EST.txt GT.txt [--json] [--sim3] [--delta N | --delta-m D]\n"
@@ -213,6 +215,9 @@ SlamArgs ParseSlam(ArgCursor* c) {
       a.camera = c->TakeValue(arg);
     } else if (arg == "--masks") {
       a.masks_dir = c->TakeValue(arg);
+    } else if (arg == "--skip-bad-frames") {
+      c->NoValue(arg);
+      a.skip_bad_frames = true;
     } else if (arg == "--set") {
       a.sets.push_back(c->TakeValue(arg));
       CheckSet("slam", a.sets.back());

@@ -23,6 +23,7 @@ struct SlamArgs {
   bool force = false;             // --force: --out may replace a non-empty folder holding no run
   std::string camera;             // --camera: calibration file; empty = the dataset's own
   std::string masks_dir;          // instance masks (docs/MASKS.md); empty when --masks was not given
+  bool skip_bad_frames = false;   // --skip-bad-frames: a lone unreadable frame is skipped, not exit 2
   std::vector<std::string> sets;  // "key.path=value" SLAM settings overrides, in command-line order
 };
 

@@ -95,6 +95,7 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   slam::SlamSettings settings =
       slam::LoadSlamSettings(args.config.empty() ? slam::DefaultSlamSettingsPath() : args.config, args.sets);
   std::unique_ptr<io::DatasetReader> reader = io::OpenDataset(args.dataset_dir, format, args.masks_dir, args.camera);
+  reader->AllowSkippingBadFrames(args.skip_bad_frames);
   const PinholeIntrinsics& k = reader->intrinsics();
   std::printf("viqu slam: camera %s: fx %g fy %g cx %g cy %g, %dx%d\n", reader->calibration_source().c_str(), k.fx, k.fy,
               k.cx, k.cy, k.width, k.height);
@@ -113,11 +114,9 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   }
 
   const std::string out_dir = args.out_dir.empty() ? DefaultOutDir(args.dataset_dir) : args.out_dir;
-  RunFolderWriter folder(out_dir, args.force, command_line);
-  // The output folder is replaced as a whole: it must not hold anything the replay reads.
-  for (const std::string& input : {args.dataset_dir, args.masks_dir, args.camera, args.config}) {
-    RequireOutsideOutput(folder.final_path(), input);
-  }
+  // The output folder is replaced as a whole: it must not hold anything the replay reads, nor lie
+  // inside it.
+  RunFolderWriter folder(out_dir, args.force, command_line, {args.dataset_dir, args.masks_dir, args.camera, args.config});
   const std::string& out = folder.path();
   char camera_line[512];
   std::snprintf(camera_line, sizeof camera_line, "# camera calibration: %s (fx %g, fy %g, cx %g, cy %g, %dx%d)\n",
@@ -191,9 +190,10 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   json.Set("camera.cy", k.cy);
   json.Set("camera.width", k.width);
   json.Set("camera.height", k.height);
+  json.Set("camera.frames_skipped", reader->frames_skipped());
   if (!args.masks_dir.empty()) json.Set("masks", args.masks_dir);
   json.Set("sim_time_s", (last_t - first_t) * 1e-9);
-  const double path = PathLength(gt);
+  const double path = reader->path_length_m().value_or(PathLength(gt));
   if (!gt.empty()) {
     json.Set("path_length_m", path);
     sim::TrajectoryWriter gt_out(out + "/trajectory_gt.txt");
@@ -213,6 +213,10 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   }
   folder.Complete(0);
   if (!summary.ate_unavailable.empty()) std::fprintf(stderr, "viqu: note: no ATE: %s\n", summary.ate_unavailable.c_str());
+  if (reader->frames_skipped() > 0) {
+    std::fprintf(stderr, "viqu: note: %d unreadable frame(s) skipped (--skip-bad-frames; metrics.json camera.frames_skipped)\n",
+                 reader->frames_skipped());
+  }
   std::printf("viqu slam %s (%s): %d frames in %.1f s\n", args.dataset_dir.c_str(), io::DatasetFormatName(format),
               frames, wall);
   std::printf("SLAM: %s\n", runner::SlamSummaryLine(summary).c_str());

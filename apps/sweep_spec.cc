@@ -10,6 +10,7 @@
 
 #include "common/errors.h"
 #include "common/yaml_strict.h"
+#include "runner/metric_keys.h"
 #include "runner/scenario_settings.h"
 #include "scenario/scenario_loader.h"
 
@@ -69,8 +70,8 @@ SweepSpec LoadSweepSpec(const std::string& path) {
     spec.scenarios.push_back(abs);
   }
 
-  if (top.Has("seeds")) {
-    const YAML::Node seeds = top.Get("seeds");
+  const YAML::Node seeds = top.Get("seeds");
+  if (seeds.IsDefined()) {
     if (seeds.IsScalar()) {
       const int64_t n = ReadYamlInteger(src, seeds, "seeds", NumberRange::Closed(1, 10000));
       for (int64_t s = 1; s <= n; ++s) spec.seeds.push_back(static_cast<uint64_t>(s));
@@ -111,6 +112,10 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   for (size_t i = 0; i < metrics.size(); ++i) {
     const std::string m = ReadYamlString(src, metrics[i], "metrics." + std::to_string(i));
     if (!metric_names.insert(m).second) src.Fail("metrics." + std::to_string(i), metrics[i], "metric '" + m + "' appears twice");
+    if (!runner::IsMetricKey(m)) {
+      src.Fail("metrics." + std::to_string(i), metrics[i],
+               "'" + m + "' is no metrics.json key (did you mean '" + runner::NearestMetricKey(m) + "'?)");
+    }
     spec.metrics.push_back(m);
   }
   if (spec.metrics.empty()) spec.metrics = {"ate.rmse_m", "tracking.lost_frames"};

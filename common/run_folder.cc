@@ -122,7 +122,8 @@ void WriteMarker(const std::string& dir, const char* name, const std::string& st
 
 }  // namespace
 
-RunFolderWriter::RunFolderWriter(const std::string& final_dir, bool force, const std::string& command_line)
+RunFolderWriter::RunFolderWriter(const std::string& final_dir, bool force, const std::string& command_line,
+                                 const std::vector<std::string>& inputs)
     : command_line_(command_line) {
   fs::path dir = fs::path(final_dir).lexically_normal();
   if (!dir.empty() && !dir.has_filename() && dir.has_relative_path()) dir = dir.parent_path();  // "runs/x/" -> "runs/x"
@@ -137,6 +138,7 @@ RunFolderWriter::RunFolderWriter(const std::string& final_dir, bool force, const
   if (IsSameOrAncestor(dir, fs::current_path(ec))) {
     throw InputError("output folder " + final_ + " is the current folder or holds it; a run replaces its folder as a whole");
   }
+  for (const std::string& input : inputs) RequireOutsideOutput(final_, input);
   if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !HoldsOnlyRunOutputs(dir) && !force) {
     throw InputError("output folder " + final_ +
                      " holds files that are no viqu run's outputs; a run replaces its folder as a whole: choose another "
@@ -180,6 +182,11 @@ void RequireOutsideOutput(const std::string& out_dir, const std::string& input) 
   if (IsSameOrAncestor(fs::path(out_dir), fs::path(input))) {
     throw InputError("output folder " + out_dir + " holds the input " + input +
                      "; a run replaces its folder as a whole: choose another --out");
+  }
+  std::error_code ec;
+  if (fs::is_directory(input, ec) && IsSameOrAncestor(fs::path(input), fs::path(out_dir))) {
+    throw InputError("output folder " + out_dir + " lies inside the input folder " + input +
+                     ", which the run reads: choose another --out");
   }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <vector>
 
 namespace viqu {
 
@@ -15,16 +16,18 @@ inline constexpr const char* kRunIncompleteMarker = "run_incomplete.json";
 // another's, a failed run leaves DIR as it was, and a killed run leaves only the partial folder
 // (no marker: recognisably incomplete), which the next run into DIR removes.
 //
-//   RunFolderWriter folder(opt.out_dir, opt.force, command_line);  // checks, before any work
+//   RunFolderWriter folder(opt.out_dir, opt.force, command_line, {scenario_file, world_file});
 //   ... write outputs under folder.path() ...
 //   folder.Complete(exit_code);       // or folder.Interrupted("SIGINT at t = 3.2 s")
 class RunFolderWriter {
  public:
-  // Throws InputError (exit 2) when DIR is a file, the current folder or one above it, a
+  // Throws InputError (exit 2) when DIR is a file, the current folder or one above it, holds one
+  // of `inputs` or lies inside one (RequireOutsideOutput; `force` does not lift either), is a
   // non-empty folder that holds no viqu run (unless `force`), or when the partial folder cannot
   // be created (e.g. an unwritable parent). Removes partial folders of earlier runs into DIR
   // whose process is gone.
-  RunFolderWriter(const std::string& final_dir, bool force, const std::string& command_line);
+  RunFolderWriter(const std::string& final_dir, bool force, const std::string& command_line,
+                  const std::vector<std::string>& inputs = {});
   // Without Complete() or Interrupted() (an exception): removes the partial folder.
   ~RunFolderWriter();
   RunFolderWriter(const RunFolderWriter&) = delete;
@@ -51,7 +54,9 @@ class RunFolderWriter {
 };
 
 // Throws InputError when `input` (a file or folder the run reads while it works) lies in
-// `out_dir`, which the run replaces as a whole. Empty `input`: nothing to check.
+// `out_dir`, which the run replaces as a whole, or when `out_dir` lies inside the folder `input`
+// (writing there would change what is read: a recorded run's files no longer match its marker).
+// Empty `input`: nothing to check.
 void RequireOutsideOutput(const std::string& out_dir, const std::string& input);
 
 // Whether `dir` holds a complete run: the completion marker is there and every file it lists is

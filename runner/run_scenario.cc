@@ -138,8 +138,8 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   }
   // Everything is checked: from here on the run writes its folder (common/run_folder.h).
   const std::string out_dir = opt.out_dir.empty() ? "runs/" + s.name : opt.out_dir;
-  RunFolderWriter folder(out_dir, opt.force, opt.command_line);
-  for (const std::string& input : {s.world, s.robot.model, s.slam.config}) RequireOutsideOutput(folder.final_path(), input);
+  RunFolderWriter folder(out_dir, opt.force, opt.command_line,
+                         {s.source_file, s.world, s.robot.model, UrdfBesideMjcf(s.robot.model), s.slam.config});
   const std::string& out = folder.path();
   WriteFileAtomic(out + "/scenario.yaml", ScenarioToYaml(resolved));
 

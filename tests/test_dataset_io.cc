@@ -1022,7 +1022,7 @@ TEST(DatasetIoBadInput, EmptyMalformedOrBackwardsListsNameFileAndLine) {
   ExpectInputError([&] { TumDatasetReader r(tum.string()); }, {"rgb.txt", "no images"});
 }
 
-TEST(DatasetIoBadInput, ASingleCorruptImageIsSkippedTwoInARowOrTheFirstAreErrors) {
+TEST(DatasetIoBadInput, ACorruptImageIsAnErrorOrWhenAllowedSkippedAloneButNotTwoInARowOrFirst) {
   TempDir tmp;
   const fs::path dir = tmp.path() / "euroc";
   SyntheticEuroc s = WriteEuroc(dir, 5);
@@ -1031,7 +1031,16 @@ TEST(DatasetIoBadInput, ASingleCorruptImageIsSkippedTwoInARowOrTheFirstAreErrors
   };
   WriteText(image(2, "cam0"), "\x89PNG\r\n\x1a\n truncated");
   {
+    // By default an unreadable image is bad input, named.
     EurocDatasetReader reader(dir.string());
+    StereoFrame f;
+    ASSERT_TRUE(reader.Next(&f));
+    ASSERT_TRUE(reader.Next(&f));
+    ExpectInputError([&] { reader.Next(&f); }, {image(2, "cam0").string(), "--skip-bad-frames"});
+  }
+  {
+    EurocDatasetReader reader(dir.string());
+    reader.AllowSkippingBadFrames(true);
     EXPECT_EQ(reader.NumFrames(), 5u);
     std::vector<int64_t> got;
     StereoFrame f;
@@ -1041,10 +1050,12 @@ TEST(DatasetIoBadInput, ASingleCorruptImageIsSkippedTwoInARowOrTheFirstAreErrors
     EXPECT_EQ(got, (std::vector<int64_t>{s.stamps[0], s.stamps[1], s.stamps[3], s.stamps[4]}));
     EXPECT_NE(err.find(image(2, "cam0").string()), std::string::npos) << err;
     EXPECT_NE(err.find("frame skipped"), std::string::npos) << err;
+    EXPECT_EQ(reader.frames_skipped(), 1);
   }
   fs::remove(image(3, "cam1"));  // a missing file counts as unreadable too
   {
     EurocDatasetReader reader(dir.string());
+    reader.AllowSkippingBadFrames(true);
     StereoFrame f;
     ASSERT_TRUE(reader.Next(&f));
     ASSERT_TRUE(reader.Next(&f));
@@ -1055,6 +1066,7 @@ TEST(DatasetIoBadInput, ASingleCorruptImageIsSkippedTwoInARowOrTheFirstAreErrors
   WriteText(image(0, "cam0"), "");
   {
     EurocDatasetReader reader(dir.string());
+    reader.AllowSkippingBadFrames(true);
     StereoFrame f;
     ExpectInputError([&] { reader.Next(&f); }, {image(0, "cam0").string(), "first frame"});
   }
@@ -1063,7 +1075,14 @@ TEST(DatasetIoBadInput, ASingleCorruptImageIsSkippedTwoInARowOrTheFirstAreErrors
   const fs::path depth = tmp.path() / "run" / "dataset" / "mav0" / "depth0" / "data" /
                          (std::to_string(rec.frames[1].t_ns) + ".png");
   WriteText(depth, "not a png");
+  {
+    ViquDatasetReader strict((tmp.path() / "run").string());
+    StereoFrame f;
+    ASSERT_TRUE(strict.Next(&f));
+    ExpectInputError([&] { strict.Next(&f); }, {depth.string()});
+  }
   ViquDatasetReader reader((tmp.path() / "run").string());
+  reader.AllowSkippingBadFrames(true);
   StereoFrame f;
   std::vector<int64_t> got;
   testing::internal::CaptureStderr();

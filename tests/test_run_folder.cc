@@ -145,6 +145,26 @@ TEST(RunFolder, RefusesBadOutputFoldersBeforeAnyWork) {
   // Inputs inside the output folder are refused (the folder is replaced as a whole).
   EXPECT_THROW(RequireOutsideOutput((root / "experiment").string(), (root / "experiment" / "scenario.yaml").string()), InputError);
   EXPECT_NO_THROW(RequireOutsideOutput((root / "experiment").string(), (root / "mine" / "x.yaml").string()));
+  // ... and --force does not lift that: the writer checks its inputs before anything else. Nor
+  // may the output folder lie inside an input folder (a recorded run replayed into its own
+  // dataset/ would be replaced by the replay).
+  try {
+    RunFolderWriter forced((root / "experiment").string(), true, "", {(root / "experiment" / "scenario.yaml").string()});
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds the input"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("--force"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ReadText(root / "experiment" / "scenario.yaml"), "name: x\n");
+  WriteText(root / "recorded" / "dataset" / "mav0" / "imu0.csv", "t\n");
+  try {
+    RunFolderWriter forced((root / "recorded" / "dataset").string(), true, "", {(root / "recorded").string()});
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lies inside the input folder"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ReadText(root / "recorded" / "dataset" / "mav0" / "imu0.csv"), "t\n");
+  EXPECT_NO_THROW(RequireOutsideOutput((root / "recorded_replay").string(), (root / "recorded").string()));
   // The current folder (or one above it) is never replaced, forced or not.
   EXPECT_THROW(RunFolderWriter(fs::current_path().string(), true, ""), InputError);
   EXPECT_THROW(RunFolderWriter(fs::current_path().parent_path().string(), true, ""), InputError);

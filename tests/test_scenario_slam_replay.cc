@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <sstream>
@@ -38,6 +39,7 @@
 #include "runner/run_scenario.h"
 #include "apps/slam_command.h"
 #include "common/errors.h"
+#include "runner/metric_keys.h"
 #include "scenario/scenario_loader.h"
 #include "slam/eval/trajectory.h"
 #include "read_all.h"
@@ -157,6 +159,25 @@ void ExpectSameTrajectory(const fs::path& a, const fs::path& b) {
 }
 
 YAML::Node Metrics(const fs::path& run) { return YAML::LoadFile((run / "metrics.json").string()); }
+
+// Every single value in the run's metrics.json is a key a sweep can name (runner/metric_keys.h):
+// the list is kept in step with what runs and replays write.
+void ExpectEveryMetricKeyListed(const fs::path& run) {
+  std::vector<std::string> unlisted;
+  int leaves = 0;
+  std::function<void(const YAML::Node&, const std::string&)> walk = [&](const YAML::Node& n, const std::string& key) {
+    if (n.IsMap()) {
+      for (const auto& kv : n) walk(kv.second, key.empty() ? kv.first.Scalar() : key + "." + kv.first.Scalar());
+    } else if (n.IsScalar()) {
+      ++leaves;
+      if (!runner::IsMetricKey(key)) unlisted.push_back(key);
+    }  // lists (dynamic.objects) are no single value
+  };
+  walk(Metrics(run), "");
+  EXPECT_GT(leaves, 20) << run;
+  EXPECT_TRUE(unlisted.empty()) << run << ": metrics.json keys missing from runner/metric_keys.cc: "
+                                << ::testing::PrintToString(unlisted);
+}
 double Ate(const fs::path& run) { return Metrics(run)["ate"]["rmse_m"].as<double>(); }
 
 // Sum of tracking.csv's features_dropped column.
@@ -284,6 +305,13 @@ TEST(SlamReplay, ViquFormatReplaysTheLiveStereoRunWithItsDynamicDecisions) {
   ExpectSameTrajectory(live / "trajectory_est.txt", fs::path(args.out_dir) / "trajectory_est.txt");
   ExpectSameTracking(live, args.out_dir);
   ExpectSameDecisions(live, args.out_dir);
+  ExpectEveryMetricKeyListed(live);
+  ExpectEveryMetricKeyListed(args.out_dir);
+  // The same path length, hence the same share of path, as the live run reported.
+  EXPECT_NEAR(Metrics(args.out_dir)["path_length_m"].as<double>(), Metrics(live)["path_length_m"].as<double>(), 1e-6);
+  EXPECT_NEAR(Metrics(args.out_dir)["ate"]["rmse_pct_path"].as<double>(), Metrics(live)["ate"]["rmse_pct_path"].as<double>(),
+              1e-6);
+  EXPECT_EQ(Metrics(args.out_dir)["camera"]["frames_skipped"].as<int>(), 0);
   // The replay fused leg odometry as the live run did: every frame but the first corrected it.
   EXPECT_TRUE(Metrics(args.out_dir)["lo"]["fused"].as<bool>());
   EXPECT_EQ(Metrics(args.out_dir)["lo"]["fusion_corrections"].as<int>(), Metrics(live)["lo"]["fusion_corrections"].as<int>());
@@ -298,6 +326,7 @@ TEST(SlamReplay, ViquFormatReplaysTheLiveStereoRunWithItsDynamicDecisions) {
   args.out_dir = Fresh("stereo_euroc").string();
   ASSERT_EQ(app::RunSlamCommand(args), 0);
   const YAML::Node m = Metrics(args.out_dir);
+  ExpectEveryMetricKeyListed(args.out_dir);
   EXPECT_EQ(m["tracking"]["lost_frames"].as<int>(), 0);
   std::printf("ATE live %.4f m, EuRoC replay %.4f m\n", Ate(live), Ate(args.out_dir));
   EXPECT_LT(Ate(args.out_dir), 2 * Ate(live) + 0.002);
@@ -374,6 +403,13 @@ TEST(SlamReplay, RgbdRunReplaysFromSeg0AndFromTumWithMasks) {
   ExpectSameTrajectory(live / "trajectory_est.txt", fs::path(args.out_dir) / "trajectory_est.txt");
   ExpectSameTracking(live, args.out_dir);
   ExpectSameDecisions(live, args.out_dir);
+  ExpectEveryMetricKeyListed(live);
+  ExpectEveryMetricKeyListed(args.out_dir);
+  // The same path length, hence the same share of path, as the live run reported.
+  EXPECT_NEAR(Metrics(args.out_dir)["path_length_m"].as<double>(), Metrics(live)["path_length_m"].as<double>(), 1e-6);
+  EXPECT_NEAR(Metrics(args.out_dir)["ate"]["rmse_pct_path"].as<double>(), Metrics(live)["ate"]["rmse_pct_path"].as<double>(),
+              1e-6);
+  EXPECT_EQ(Metrics(args.out_dir)["camera"]["frames_skipped"].as<int>(), 0);
 
   // seg0 renamed to the rgb images' names (rgb.txt: "t rgb/<t>.png", in the order of seg0's rows).
   std::map<int64_t, std::string> rgb_name;

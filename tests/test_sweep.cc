@@ -73,15 +73,23 @@ TEST_F(SweepTest, ExpandsScenariosTimesGridTimesSeedsLastKeyFastest) {
 
 TEST_F(SweepTest, BadSweepFilesNameFileLineAndColumn) {
   const std::string s = "scenarios: [" + kScenario + "]\n";
-  EXPECT_NE(ErrorOf(s + "seed: [1]\n").find("bad.yaml:2:1: unknown key 'seed'"), std::string::npos) << ErrorOf(s + "seed: [1]\n");
+  EXPECT_NE(ErrorOf(s + "seed: [1]\n").find("bad.yaml:2:1: unknown key 'seed' (expected one of: scenarios, seeds, grid"),
+            std::string::npos)
+      << ErrorOf(s + "seed: [1]\n");
   EXPECT_NE(ErrorOf(s + "seeds: [1, 1]\n").find("bad.yaml:2:12: seed 1 appears twice"), std::string::npos);
   EXPECT_NE(ErrorOf(s + "seeds: 0\n").find("bad.yaml:2:8"), std::string::npos);
   EXPECT_NE(ErrorOf(s + "grid: {duration_s: 3}\n").find("bad.yaml:2:20: key 'grid.duration_s' expected a non-empty list"),
             std::string::npos);
   EXPECT_NE(ErrorOf(s + "grid: {duration_s: [3]}\nfixed: {duration_s: 4}\n").find("is both fixed and in the grid"),
             std::string::npos);
-  EXPECT_NE(ErrorOf(s + "metrics: [a]\nbest: {b: max}\n").find("bad.yaml:3:8: 'b' is not one of the metrics"), std::string::npos);
-  EXPECT_NE(ErrorOf(s + "metrics: [a]\nbest: {a: most}\n").find("bad.yaml:3:11"), std::string::npos);
+  EXPECT_NE(ErrorOf(s + "metrics: [ate.rmse_m]\nbest: {b: max}\n").find("bad.yaml:3:8: 'b' is not one of the metrics"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(s + "metrics: [ate.rmse_m]\nbest: {ate.rmse_m: most}\n").find("bad.yaml:3:20"), std::string::npos);
+  // A metric no run writes (a typo) is named before anything runs, with the nearest key.
+  EXPECT_NE(ErrorOf(s + "metrics: [ate.rmse_m, ate.rmse]\n")
+                .find("bad.yaml:2:23: 'ate.rmse' is no metrics.json key (did you mean 'ate.rmse_m'?)"),
+            std::string::npos)
+      << ErrorOf(s + "metrics: [ate.rmse_m, ate.rmse]\n");
   EXPECT_NE(ErrorOf("scenarios: [nowhere.yaml]\n").find("bad.yaml:1:13: scenario file not found"), std::string::npos);
   EXPECT_NE(ErrorOf("seeds: [1]\n").find("missing required key 'scenarios'"), std::string::npos);
   // A key or value that `viqu run --set` would reject: the point and the override are named.

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "slam/io/frame_skip_policy.h"
 #include "slam/measurements/ground_truth_pose.h"
 #include "slam/measurements/imu_sample.h"
 #include "slam/measurements/stereo_frame.h"
@@ -28,9 +29,13 @@ class DatasetReader {
 
   // Fills `frame` with the next frame (every field reset; images rectified pinhole, RGB) and
   // returns true, or returns false after the last one. Stamps strictly increase. A frame whose
-  // images cannot be read is skipped with a warning on stderr when earlier frames were read and
-  // the frame before it was fine; otherwise Next throws InputError naming the file.
+  // images cannot be read is an InputError naming the file, unless AllowSkippingBadFrames(true):
+  // then it is skipped with a warning on stderr when earlier frames were read and the frame
+  // before it was fine (FrameSkipPolicy).
   virtual bool Next(StereoFrame* frame) = 0;
+  void AllowSkippingBadFrames(bool allow) { skip_.Allow(allow); }
+  // Frames skipped so far (unreadable images).
+  int frames_skipped() const { return skip_.skipped(); }
 
   // Frames the dataset lists (after left/right and rgb/depth association), skipped ones included.
   virtual size_t NumFrames() const = 0;
@@ -50,6 +55,13 @@ class DatasetReader {
   virtual const std::string& calibration_source() const = 0;
   // The dataset's IMU, when it has one (EuRoC imu0/data.csv); nullptr otherwise.
   virtual const InertialStream* inertial() const { return nullptr; }
+  // The path length the dataset's own runs report (metrics.json path_length_m), when it defines
+  // one: a viqu recording's is the trunk's path in the ground plane, frame to frame, as the live
+  // run sums it. nullopt: the replay takes the ground-truth camera's 3-D path.
+  virtual std::optional<double> path_length_m() const { return std::nullopt; }
+
+ protected:
+  FrameSkipPolicy skip_;  // what Next does with an unreadable frame
 };
 
 }  // namespace viqu::io

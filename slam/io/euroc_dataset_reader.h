@@ -53,7 +53,6 @@ class EurocDatasetReader : public DatasetReader {
   std::optional<InstanceMaskFolder> masks_;     // --masks
   std::optional<std::vector<StampedPose>> ground_truth_;  // rectified left camera in world
   std::optional<InertialStream> inertial_;     // imu0
-  FrameSkipPolicy skip_;
 };
 
 }  // namespace viqu::io

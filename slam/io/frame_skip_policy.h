@@ -6,23 +6,27 @@
 
 namespace viqu::io {
 
-// What a reader does with a frame whose image files cannot be read. A single bad frame among
-// good ones (a truncated file in a long sequence) is skipped with a warning on stderr; a bad
-// first frame, or two bad frames in a row, point at a broken dataset: InputError.
+// What a reader does with a frame whose image files cannot be read. By default any such frame is
+// bad input: InputError naming the file (exit 2), since a replay that quietly drops frames is not
+// the run it replays. With Allow(true) (`viqu slam --skip-bad-frames`) a single bad frame among
+// good ones (a truncated file in a long sequence) is skipped with a warning on stderr and counted;
+// a bad first frame, or two bad frames in a row, still point at a broken dataset: InputError.
 class FrameSkipPolicy {
  public:
+  void Allow(bool allow) { allow_ = allow; }
   // The frame was read.
   void Good() {
     any_good_ = true;
     last_bad_ = false;
   }
   // The frame cannot be read (`why` names the file): warns and returns (the caller skips the
-  // frame), or throws InputError(why + ...).
+  // frame) when skipping is allowed and the frame is a lone bad one, or throws InputError(why + ...).
   void Bad(const std::string& why);
 
   int skipped() const { return skipped_; }
 
  private:
+  bool allow_ = false;     // lone bad frames may be skipped
   bool any_good_ = false;  // a frame was read
   bool last_bad_ = false;  // the frame before this one could not be read
   int skipped_ = 0;        // frames skipped so far

@@ -53,7 +53,6 @@ class TumDatasetReader : public DatasetReader {
   std::vector<ImagePair> frames_;                  // rgb (a) / depth (b) image files
   size_t next_ = 0;                                // index of the next frame
   std::optional<std::vector<StampedPose>> ground_truth_;
-  FrameSkipPolicy skip_;
 };
 
 }  // namespace viqu::io

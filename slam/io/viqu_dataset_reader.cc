@@ -102,11 +102,19 @@ ViquDatasetReader::ViquDatasetReader(const std::string& dir, const std::string& 
 
   const fs::path gt_tum = fs::path(run_dir) / "trajectory_gt.txt";
   const fs::path gt_body = mav0 / "state_groundtruth_estimate0" / "data.csv";
+  std::vector<StampedPose> T_w_body;
+  if (fs::exists(gt_body, ec)) T_w_body = ReadEurocGroundTruth(gt_body.string());
   if (!run_dir.empty() && fs::exists(gt_tum, ec)) {
     ground_truth_ = eval::ReadTumTrajectory(gt_tum.string());
-  } else if (fs::exists(gt_body, ec)) {
-    const std::vector<StampedPose> T_w_body = ReadEurocGroundTruth(gt_body.string());
-    if (!T_w_body.empty()) ground_truth_ = ChangeTrajectoryFrame(T_w_body, layout.cam0.T_B_S);
+  } else if (!T_w_body.empty()) {
+    ground_truth_ = ChangeTrajectoryFrame(T_w_body, layout.cam0.T_B_S);
+  }
+  if (!T_w_body.empty()) {
+    // The live run's path_length_m (runner/run_scenario.cc): the trunk in the ground plane, summed
+    // over the frames (the recording holds the trunk's pose at every frame).
+    double length = 0;
+    for (size_t i = 1; i < T_w_body.size(); ++i) length += (T_w_body[i].p_w_x - T_w_body[i - 1].p_w_x).head<2>().norm();
+    path_length_m_ = length;
   }
 }
 

@@ -39,6 +39,7 @@ class ViquDatasetReader : public DatasetReader {
   bool HasDepth() const override { return has_depth_; }
   bool HasSegmentation() const override { return has_segmentation_; }
   const std::optional<std::vector<StampedPose>>& ground_truth() const override { return ground_truth_; }
+  std::optional<double> path_length_m() const override { return path_length_m_; }
   const std::string& calibration_source() const override { return calibration_source_; }
 
  private:
@@ -60,7 +61,7 @@ class ViquDatasetReader : public DatasetReader {
   std::string frame_instances_path_;            // that file
   std::optional<InstanceMaskFolder> masks_;     // --masks (then seg0 is not read)
   std::optional<std::vector<StampedPose>> ground_truth_;  // left camera in world
-  FrameSkipPolicy skip_;
+  std::optional<double> path_length_m_;  // the trunk's, in the ground plane (state_groundtruth_estimate0)
 };
 
 }  // namespace viqu::io
