@@ -68,7 +68,15 @@ int Main(int argc, const char* const argv[]) {
   try {
     return Dispatch(ParseCommandLine(argc, argv));
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "viqu: %s\n\n%s", e.what(), UsageText().c_str());
+    // A command's own errors start with its name ("eval: ..."): point at its help, so that the
+    // message is not scrolled away by every command's usage.
+    const std::string what = e.what();
+    const std::string command = what.substr(0, what.find(':'));
+    if (what.find(':') != std::string::npos && !UsageText(command).empty()) {
+      std::fprintf(stderr, "viqu: %s\n(viqu %s --help lists its options)\n", what.c_str(), command.c_str());
+    } else {
+      std::fprintf(stderr, "viqu: %s\n\n%s", what.c_str(), UsageText().c_str());
+    }
     return kExitBadInput;
   } catch (const InputError& e) {
     std::fprintf(stderr, "viqu: %s\n", e.what());

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -64,9 +65,18 @@ void WritePlan(const SweepSpec& spec, const std::vector<SweepPoint>& points, con
                const std::string& dir) {
   WriteFileAtomic(dir + "/sweep.yaml", "# the sweep as resolved by viqu (absolute scenario paths)\n" + SweepSpecToYaml(spec));
   std::string manifest;
+  // A point's time limit, as the local runner keeps it: SIGTERM at timeout_s (the run ends at a
+  // step boundary, marked incomplete), SIGKILL 10 s later (coreutils' timeout).
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.9g", spec.timeout_s);
+  const std::string limit = spec.timeout_s > 0 ? "timeout -k 10 " + std::string(seconds) + " " : "";
   for (const SweepPoint& p : points) {
-    std::string line;
-    for (const std::string& a : PointArgs(viqu_exe, p, dir)) line += (line.empty() ? "" : " ") + ShellQuote(a);
+    std::string line = limit;
+    bool first = true;
+    for (const std::string& a : PointArgs(viqu_exe, p, dir)) {
+      line += (first ? "" : " ") + ShellQuote(a);
+      first = false;
+    }
     manifest += line + " > " + ShellQuote(dir + "/logs/" + p.id + ".log") + " 2>&1\n";
   }
   WriteFileAtomic(dir + "/manifest.txt", manifest);
@@ -184,7 +194,11 @@ int RunSweepCommand(const SweepArgs& args, const std::string& viqu_exe) {
           ShellQuote(abs) + "`.\n"
           "#SBATCH --job-name=viqu-sweep\n"
           "#SBATCH --array=0-" + std::to_string(points.size() - 1) + "\n"
-          "#SBATCH --cpus-per-task=1\n"
+          // A run keeps two threads busy (the simulation and renderer, the estimator).
+          "#SBATCH --cpus-per-task=2\n" +
+          (spec.timeout_s > 0
+               ? "#SBATCH --time=" + std::to_string(static_cast<long>(std::ceil((spec.timeout_s + 10) / 60.0)) + 1) + "\n"
+               : std::string()) +
           "#SBATCH --output=" + abs + "/logs/slurm-%a.out\n"
           "set -euo pipefail\n"
           "line=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " + ShellQuote(abs + "/manifest.txt") + ")\n"

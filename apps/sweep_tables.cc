@@ -144,8 +144,9 @@ std::vector<std::string> WriteSweepTables(const SweepSpec& spec, const std::vect
       const double mean = sum / xs.size();
       double var = 0;
       for (double x : xs) var += (x - mean) * (x - mean);
-      const double sd = xs.size() > 1 ? std::sqrt(var / (xs.size() - 1)) : 0.0;  // sample std over seeds
-      summary += "," + Number(mean) + "," + Number(sd) + "," + Number(lo) + "," + Number(hi) + "," + std::to_string(xs.size());
+      // Sample std over seeds; with one value there is none (blank, not 0).
+      const std::string sd = xs.size() > 1 ? Number(std::sqrt(var / (xs.size() - 1))) : "";
+      summary += "," + Number(mean) + "," + sd + "," + Number(lo) + "," + Number(hi) + "," + std::to_string(xs.size());
       const bool better = std::isnan(best[m]) || (spec.maximise[m] ? mean > best[m] : mean < best[m]);
       if (better) {
         best[m] = mean;

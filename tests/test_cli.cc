@@ -194,6 +194,12 @@ TEST(CliProgram, ExitCodesAndMessages) {
   const ProgramResult none = RunViqu("");
   EXPECT_EQ(none.exit_code, 2);
   EXPECT_NE(none.output.find("usage: viqu COMMAND"), std::string::npos) << none.output;
+  // A command's usage error points at its help instead of printing every command's usage.
+  const ProgramResult usage = RunViqu("eval a.txt b.txt --delta 0");
+  EXPECT_EQ(usage.exit_code, 2);
+  EXPECT_EQ(usage.output.rfind("viqu: eval: --delta", 0), 0u) << usage.output;
+  EXPECT_NE(usage.output.find("(viqu eval --help lists its options)\n"), std::string::npos) << usage.output;
+  EXPECT_EQ(usage.output.find("viqu run SCENARIO"), std::string::npos) << usage.output;
   const ProgramResult missing = RunViqu("run /nonexistent/scenario.yaml");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_EQ(missing.output, "viqu: /nonexistent/scenario.yaml: file not found\n");

@@ -983,6 +983,9 @@ TEST(DatasetIoBadInput, MissingFolderOrUnknownFormat) {
   // A folder that exists but is no dataset.
   ExpectInputError([&] { OpenDataset(tmp.path().string(), DatasetFormat::kEuroc); }, {"no mav0/"});
   ExpectInputError([&] { OpenDataset(tmp.path().string(), DatasetFormat::kViqu); }, {"not a viqu recording"});
+  const fs::path tum_as_viqu = tmp.path() / "tum_sequence";
+  WriteTumSequence(tum_as_viqu, {1.0}, {1.0});
+  ExpectInputError([&] { OpenDataset(tum_as_viqu.string(), DatasetFormat::kViqu); }, {"not a viqu recording", "--format tum"});
   ExpectInputError([&] { OpenDataset(tmp.path().string(), DatasetFormat::kTum); }, {"rgb.txt", "not found"});
 }
 

@@ -3,6 +3,7 @@
 // same tables; the Slurm array, run by hand task by task, gives the same results as the local
 // sweep.
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -111,6 +112,24 @@ TEST(Sweep, ResumeRerunsOnlyTheIncompletePointAndSlurmGivesTheSameResults) {
   ASSERT_EQ(collected.exit_code, 0) << collected.output;
   EXPECT_EQ(ResultsWithoutWallTime(fs::path(slurm) / "results.csv"), uninterrupted);
   EXPECT_EQ(ReadText(fs::path(slurm) / "summary.csv"), ReadText(fs::path(out) / "summary.csv"));
+}
+
+// The Slurm array keeps the sweep's time limit as the local runner does (SIGTERM at timeout_s,
+// SIGKILL 10 s later) and asks Slurm for that time and two CPUs a task.
+TEST(Sweep, SlurmArrayCarriesTheTimeLimit) {
+  if (!testing::ViquBuilt()) GTEST_SKIP() << "the viqu program is not built";
+  const fs::path dir = Fresh("slurm_limit");
+  std::ofstream(dir / "s.yaml") << "scenarios: [" + kScenario + "]\nseeds: [1, 2]\n" + kFixed + "timeout_s: 90\n";
+  const std::string out = (dir / "out").string();
+  ASSERT_EQ(RunViqu("sweep " + (dir / "s.yaml").string() + " --out " + out + " --emit slurm").exit_code, 0);
+  std::istringstream manifest(ReadText(fs::path(out) / "manifest.txt"));
+  int lines = 0;
+  for (std::string line; std::getline(manifest, line); ++lines) EXPECT_EQ(line.rfind("timeout -k 10 90 ", 0), 0u) << line;
+  EXPECT_EQ(lines, 2);
+  const std::string sbatch = ReadText(fs::path(out) / "sweep.sbatch");
+  EXPECT_NE(sbatch.find("#SBATCH --time=3\n"), std::string::npos) << sbatch;  // 100 s, rounded up, + 1 min
+  EXPECT_NE(sbatch.find("#SBATCH --cpus-per-task=2\n"), std::string::npos) << sbatch;
+  EXPECT_EQ(std::system(("bash -n " + out + "/sweep.sbatch").c_str()), 0);
 }
 
 }  // namespace

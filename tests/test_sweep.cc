@@ -176,6 +176,7 @@ TEST_F(SweepTest, TablesComeFromTheRunFoldersAlone) {
   // noise 4: one value, 0.4; one of three points ok.
   EXPECT_EQ(summary[2][3], "1");
   EXPECT_NEAR(std::stod(summary[2][4]), 0.4, 1e-9);
+  EXPECT_EQ(summary[2][5], "");  // no sample std of one value
   EXPECT_EQ(summary[2][8], "1");
   ASSERT_EQ(best.size(), 2u);
   EXPECT_NE(best[0].find("ate.rmse_m (min): 0.2 mean over 3 seed(s) at static_room, sensors.camera.noise_std=1"),

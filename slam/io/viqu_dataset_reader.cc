@@ -54,8 +54,10 @@ ViquDatasetReader::ViquDatasetReader(const std::string& dir, const std::string& 
     run_dir = d.string();
     dataset = d / "dataset";
   } else if (!fs::is_directory(d / "mav0", ec)) {
+    // A TUM RGB-D folder (the same run's --record-tum, or a public sequence) is told apart.
+    const std::string hint = fs::exists(d / "rgb.txt", ec) ? "; it holds rgb.txt: a TUM RGB-D folder? (--format tum)" : "";
     throw InputError(dir + ": not a viqu recording (expected DIR/dataset/mav0 or DIR/mav0, written by "
-                     "`viqu run --record`)");
+                     "`viqu run --record`)" + hint);
   }
   const EurocStereoLayout layout = ReadEurocStereoLayout((dataset / "mav0").string());
   const fs::path mav0(layout.mav0);
