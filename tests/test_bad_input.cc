@@ -1,6 +1,7 @@
 // Bad input through the program (issue 11): every case is exit 2 with viqu's message first,
 // naming the file (and line:column for YAML), before any output is written; none exits 0 with
 // wrong figures.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -99,6 +100,14 @@ TEST_F(BadInput, ScenarioChecksRunBeforeTheSimulation) {
   WriteText(dir_ / "no_floor.xml", room);
   ExpectBadInput(RunViqu("run " + kScenario + " --out " + out_ + " --set world=" + (dir_ / "no_floor.xml").string()),
                  (dir_ / "no_floor.xml").string(), "no geom named 'floor'");
+  // An attribute MuJoCo refuses: the world file's own line, not the composed scene's.
+  std::string bogus = room;
+  const size_t rug = bogus.find("name=\"rug\"");
+  bogus.insert(rug, "bogus_attr=\"1\" ");
+  const int bogus_line = 1 + static_cast<int>(std::count(bogus.begin(), bogus.begin() + static_cast<std::ptrdiff_t>(rug), '\n'));
+  WriteText(dir_ / "bogus.xml", bogus);
+  ExpectBadInput(RunViqu("run " + kScenario + " --out " + out_ + " --set world=" + (dir_ / "bogus.xml").string()),
+                 (dir_ / "bogus.xml").string() + ":" + std::to_string(bogus_line) + ": ", "unrecognized attribute: 'bogus_attr'");
 
   // SLAM settings whose pyramid leaves nothing of the image: the settings line is named.
   std::ifstream settings_in(kSource + "/slam/config/default.yaml");
