@@ -220,9 +220,7 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   std::printf("viqu slam %s (%s): %d frames in %.1f s\n", args.dataset_dir.c_str(), io::DatasetFormatName(format),
               frames, wall);
   std::printf("SLAM: %s\n", runner::SlamSummaryLine(summary).c_str());
-  std::printf("outputs: %s/{trajectory_est.txt,%smetrics.json,slam_settings.yaml,run_complete.json}\n",
-              folder.final_path().c_str(),
-              gt.empty() ? "" : "trajectory_gt.txt,");
+  std::printf("outputs: %s\n", OutputsLine(folder.final_path()).c_str());
   return 0;
 }
 

@@ -190,6 +190,18 @@ void RequireOutsideOutput(const std::string& out_dir, const std::string& input) 
   }
 }
 
+std::string OutputsLine(const std::string& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    names.push_back(e.path().filename().string() + (e.is_directory(ec) ? "/" : ""));
+  }
+  std::sort(names.begin(), names.end());
+  std::string line = dir + "/{";
+  for (size_t i = 0; i < names.size(); ++i) line += (i ? "," : "") + names[i];
+  return line + "}";
+}
+
 bool LooksLikeRunFolder(const std::string& dir) {
   std::error_code ec;
   if (fs::exists(fs::path(dir) / kRunCompleteMarker, ec) || fs::exists(fs::path(dir) / kRunIncompleteMarker, ec)) return true;

@@ -59,6 +59,10 @@ class RunFolderWriter {
 // Empty `input`: nothing to check.
 void RequireOutsideOutput(const std::string& out_dir, const std::string& input);
 
+// "DIR/{a.txt,b.json,plots/,...}": what the folder holds at its top level, sorted (folders with a
+// trailing '/'), for the line a command prints when it ends.
+std::string OutputsLine(const std::string& dir);
+
 // Whether `dir` holds a complete run: the completion marker is there and every file it lists is
 // there with its size. Otherwise false with the reason in `why` (when given).
 bool IsCompleteRunFolder(const std::string& dir, std::string* why = nullptr);

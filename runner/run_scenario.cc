@@ -412,11 +412,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
               metrics.path_length_m, metrics.frames, Median(metrics.render_ms), metrics.fell ? ", ROBOT FELL" : "");
   if (slam) std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
   if (lo) std::printf("%s\n", LoSummaryLine(lo_summary).c_str());
-  std::printf("outputs: %s/{scenario.yaml,trajectory_gt.txt,metrics.json%s%s%s,run_complete.json}\n",
-              folder.final_path().c_str(),
-              slam ? ",trajectory_est.txt,tracking.csv,slam_settings.yaml" : "",
-              recorder ? (tum_recorder ? ",dataset/,dataset_tum/" : ",dataset/") : (tum_recorder ? ",dataset_tum/" : ""),
-              video ? ",video.mp4" : "");
+  std::printf("outputs: %s\n", OutputsLine(folder.final_path()).c_str());
   if (observer) observer->OnRunEnd(observed);
   return exit_code;
 }

@@ -177,6 +177,14 @@ TEST(RunFolder, RefusesBadOutputFoldersBeforeAnyWork) {
   }
 }
 
+TEST(RunFolder, TheOutputsLineListsWhatTheFolderHolds) {
+  const fs::path root = Fresh("outputs_line");
+  WriteText(root / "run" / "metrics.json", "{}");
+  WriteText(root / "run" / "lo.csv", "t\n");
+  WriteText(root / "run" / "dataset" / "mav0" / "x", "");
+  EXPECT_EQ(OutputsLine((root / "run").string()), (root / "run").string() + "/{dataset/,lo.csv,metrics.json}");
+}
+
 TEST(RunFolder, StalePartialFoldersOfDeadProcessesAreRemoved) {
   const fs::path root = Fresh("stale");
   // A process that has ended: its PID names a partial folder no one will finish.

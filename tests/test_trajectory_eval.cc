@@ -143,6 +143,40 @@ TEST(TrajectoryEval, BadFilesAreInputErrorsWithFileAndLine) {
   std::ofstream(back) << "1.0 0 0 0 0 0 0 1\n0.5 0 0 0 0 0 0 1\n";
   EXPECT_THROW(ReadTumTrajectory(back), InputError);
   EXPECT_THROW(ReadTumTrajectory((dir / "missing.txt").string()), InputError);
+  // A NaN or an infinity is named as such, not as a malformed line; too few or too many fields are.
+  auto error_of = [&](const std::string& text) {
+    std::ofstream(bad) << text;
+    try {
+      ReadTumTrajectory(bad);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("<no InputError>");
+  };
+  EXPECT_EQ(error_of("0.0 0 0 0 0 0 0 1\n0.1 nan 0 0 0 0 0 1\n"), bad + ":2: value is not a finite number");
+  EXPECT_EQ(error_of("0.0 0 0 inf 0 0 0 1\n"), bad + ":1: value is not a finite number");
+  EXPECT_EQ(error_of("0.0 0 0 0 0 0 1\n"), bad + ":1: expected 8 numbers 't tx ty tz qx qy qz qw'");
+  EXPECT_EQ(error_of("0.0 0 0 0 0 0 0 1 5\n"), bad + ":1: expected 8 numbers 't tx ty tz qx qy qz qw'");
+  std::filesystem::remove_all(dir);
+}
+
+// Commas separate fields as well as spaces and tabs (TUM's associate.py reads them so).
+TEST(TrajectoryEval, ReadsCommaSeparatedLines) {
+  const auto dir = std::filesystem::temp_directory_path() / "viqu_eval_commas";
+  std::filesystem::create_directories(dir);
+  const std::string spaces = (dir / "spaces.txt").string(), commas = (dir / "commas.txt").string();
+  std::ofstream(spaces) << "1.5 0.25 -1 2 0 0 0.6 0.8\n1.6 0.5 -1\t2 0 0 0 1\n";
+  std::ofstream(commas) << "1.5,0.25,-1,2,0,0,0.6,0.8\n1.6, 0.5, -1, 2, 0, 0, 0, 1\n";
+  const Trajectory a = ReadTumTrajectory(spaces), b = ReadTumTrajectory(commas);
+  ASSERT_EQ(a.size(), 2u);
+  ASSERT_EQ(b.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(a[i].t_ns, b[i].t_ns);
+    EXPECT_EQ(a[i].p_w_x, b[i].p_w_x);
+    EXPECT_EQ(a[i].q_w_x.coeffs(), b[i].q_w_x.coeffs());
+  }
+  EXPECT_EQ(b[0].t_ns, 1500000000);
+  EXPECT_DOUBLE_EQ(b[0].q_w_x.z(), 0.6);
   std::filesystem::remove_all(dir);
 }
 

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <cstdlib>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "common/errors.h"
 
@@ -32,13 +35,26 @@ Trajectory ReadTumTrajectory(const std::string& path) {
     ++line_no;
     const auto first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
+    // Separated by spaces, tabs or commas, as TUM's associate.py reads them.
+    std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream ss(line);
+    std::vector<std::string> fields;
+    for (std::string f; ss >> f;) fields.push_back(f);
     long double t = 0;
     double v[7];
-    ss >> t;
-    for (double& x : v) ss >> x;
-    std::string extra;
-    if (ss.fail() || (ss >> extra)) {
+    bool numbers = fields.size() == 8;
+    for (size_t k = 0; numbers && k < 8; ++k) {
+      // strtold reads "nan" and "inf" too, which the check below names.
+      char* end = nullptr;
+      const long double x = std::strtold(fields[k].c_str(), &end);
+      numbers = end != fields[k].c_str() && *end == '\0';
+      if (k == 0) {
+        t = x;
+      } else {
+        v[k - 1] = static_cast<double>(x);
+      }
+    }
+    if (!numbers) {
       throw InputError(path + ":" + std::to_string(line_no) + ": expected 8 numbers 't tx ty tz qx qy qz qw'");
     }
     bool finite = std::isfinite(static_cast<double>(t));
