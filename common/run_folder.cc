@@ -266,7 +266,7 @@ void RequireNotInIncompleteRun(const std::string& path) {
     if (!LooksLikeRunFolder(p.string())) continue;
     std::string why;
     if (!IsCompleteRunFolder(p.string(), &why)) {
-      throw InputError(path + ": lies in an incomplete run folder " + p.string() + ": " + why);
+      throw InputError(path + ": lies in the run folder " + p.string() + ", which is incomplete or was changed after the run: " + why);
     }
     return;
   }

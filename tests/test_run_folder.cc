@@ -121,7 +121,7 @@ TEST(RunFolder, InterruptedFolderIsRefusedWithItsReason) {
     RequireNotInIncompleteRun(dir + "/trajectory_gt.txt");
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("incomplete run folder"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("which is incomplete or was changed after the run"), std::string::npos) << e.what();
   }
 }
 
@@ -287,7 +287,7 @@ TEST(RunFolderProgram, InterruptsMarkTheFolderIncompleteAndEveryReaderRefusesIt)
     EXPECT_EQ(Debris(root), 0) << "temporaries or partial folders left";
     const testing::ProgramResult replay = RunViqu("slam " + d.string() + " --out " + (root / "S").string());
     EXPECT_EQ(replay.exit_code, 2) << replay.output;
-    EXPECT_NE(replay.output.find("incomplete run folder"), std::string::npos) << replay.output;
+    EXPECT_NE(replay.output.find("which is incomplete or was changed after the run"), std::string::npos) << replay.output;
     EXPECT_EQ(RunViqu("slam " + (d / "dataset").string() + " --format euroc --out " + (root / "S").string()).exit_code, 2);
     const testing::ProgramResult eval =
         RunViqu("eval " + (d / "trajectory_est.txt").string() + " " + (d / "trajectory_gt.txt").string());
