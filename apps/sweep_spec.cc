@@ -113,8 +113,11 @@ SweepSpec LoadSweepSpec(const std::string& path) {
     const std::string m = ReadYamlString(src, metrics[i], "metrics." + std::to_string(i));
     if (!metric_names.insert(m).second) src.Fail("metrics." + std::to_string(i), metrics[i], "metric '" + m + "' appears twice");
     if (!runner::IsMetricKey(m)) {
+      const std::string nearest = runner::NearestMetricKey(m);
       src.Fail("metrics." + std::to_string(i), metrics[i],
-               "'" + m + "' is no metrics.json key (did you mean '" + runner::NearestMetricKey(m) + "'?)");
+               "'" + m + "' is no metrics.json key (" +
+                   (nearest.empty() ? "the keys are listed in DESIGN.md and runner/metric_keys.cc"
+                                    : "did you mean '" + nearest + "'?") + ")");
     }
     spec.metrics.push_back(m);
   }

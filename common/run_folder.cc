@@ -93,8 +93,10 @@ void RemoveStalePartials(const fs::path& final_dir) {
 // Whether `a` is `b` or a folder above it.
 bool IsSameOrAncestor(const fs::path& a, const fs::path& b) {
   std::error_code ec;
-  const fs::path ca = fs::weakly_canonical(a, ec);
-  const fs::path cb = fs::weakly_canonical(b, ec);
+  // Absolute first: weakly_canonical leaves a relative path relative when its first part does not
+  // exist (a default --out "runs/..." before runs/ is made), which would compare with nothing.
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  const fs::path cb = fs::weakly_canonical(fs::absolute(b, ec), ec);
   auto ia = ca.begin(), ib = cb.begin();
   for (; ia != ca.end(); ++ia, ++ib) {
     if (ib == cb.end() || *ia != *ib) return ia->empty() && std::next(ia) == ca.end();  // trailing '/'

@@ -71,7 +71,7 @@ std::string NearestMetricKey(const std::string& key) {
     const size_t d = EditDistance(key, k);
     if (best.empty() || d < best_d) best = k, best_d = d;
   }
-  return best;
+  return best_d <= key.size() / 3 ? best : "";
 }
 
 }  // namespace viqu::runner

@@ -1,5 +1,6 @@
 #include "sim/world.h"
 
+#include <cctype>
 #include <cmath>
 #include <regex>
 
@@ -39,8 +40,9 @@ World::World(const Scenario& s, const std::array<double, kNumJoints>& q_stand, d
     std::smatch m;
     const std::string source = std::regex_search(what, m, kLine) ? SourceOfComposedLine(xml_, std::stoi(m[1])) : "";
     if (source.empty()) throw;
-    const std::string mujoco = what.substr(what.find(": cannot load composed MuJoCo model: ") + 2);
-    throw InputError(source + ": " + std::regex_replace(mujoco, kLine, "") + " (the scene of " + scene_of + ")");
+    std::string mujoco = std::regex_replace(what.substr(what.find(": cannot load composed MuJoCo model: ") + 2), kLine, "");
+    while (!mujoco.empty() && std::isspace(static_cast<unsigned char>(mujoco.back()))) mujoco.pop_back();
+    throw InputError(source + ": " + mujoco + " (the scene of " + scene_of + ")");
   }
   mjModel* m = model_.get();
   ApplyFloorFriction(m, s.terrain.friction, s.world);

@@ -165,6 +165,13 @@ TEST(RunFolder, RefusesBadOutputFoldersBeforeAnyWork) {
   }
   EXPECT_EQ(ReadText(root / "recorded" / "dataset" / "mav0" / "imu0.csv"), "t\n");
   EXPECT_NO_THROW(RequireOutsideOutput((root / "recorded_replay").string(), (root / "recorded").string()));
+  // A relative --out whose first folder does not exist yet, given from inside the input folder
+  // (`cd dataset && viqu slam . --format euroc` writes runs/slam-. by default).
+  const fs::path cwd = fs::current_path();
+  fs::current_path(root / "recorded");
+  EXPECT_THROW(RequireOutsideOutput("runs/slam-x", (root / "recorded").string()), InputError);
+  EXPECT_THROW(RequireOutsideOutput("runs/slam-x", "."), InputError);
+  fs::current_path(cwd);
   // The current folder (or one above it) is never replaced, forced or not.
   EXPECT_THROW(RunFolderWriter(fs::current_path().string(), true, ""), InputError);
   EXPECT_THROW(RunFolderWriter(fs::current_path().parent_path().string(), true, ""), InputError);

@@ -90,6 +90,9 @@ TEST_F(SweepTest, BadSweepFilesNameFileLineAndColumn) {
                 .find("bad.yaml:2:23: 'ate.rmse' is no metrics.json key (did you mean 'ate.rmse_m'?)"),
             std::string::npos)
       << ErrorOf(s + "metrics: [ate.rmse_m, ate.rmse]\n");
+  EXPECT_NE(ErrorOf(s + "metrics: [zzzz]\n").find("'zzzz' is no metrics.json key (the keys are listed in DESIGN.md"),
+            std::string::npos)
+      << ErrorOf(s + "metrics: [zzzz]\n");
   EXPECT_NE(ErrorOf("scenarios: [nowhere.yaml]\n").find("bad.yaml:1:13: scenario file not found"), std::string::npos);
   EXPECT_NE(ErrorOf("seeds: [1]\n").find("missing required key 'scenarios'"), std::string::npos);
   // A key or value that `viqu run --set` would reject: the point and the override are named.

@@ -45,14 +45,14 @@ Trajectory ReadTumTrajectory(const std::string& path) {
     bool numbers = fields.size() == 8;
     for (size_t k = 0; numbers && k < 8; ++k) {
       // strtold reads "nan" and "inf" too, which the check below names.
+      // The stamp in long double (nanoseconds of 1e9 s stamps), the pose straight to double.
       char* end = nullptr;
-      const long double x = std::strtold(fields[k].c_str(), &end);
-      numbers = end != fields[k].c_str() && *end == '\0';
       if (k == 0) {
-        t = x;
+        t = std::strtold(fields[k].c_str(), &end);
       } else {
-        v[k - 1] = static_cast<double>(x);
+        v[k - 1] = std::strtod(fields[k].c_str(), &end);
       }
+      numbers = end != fields[k].c_str() && *end == '\0';
     }
     if (!numbers) {
       throw InputError(path + ":" + std::to_string(line_no) + ": expected 8 numbers 't tx ty tz qx qy qz qw'");

@@ -7,9 +7,9 @@
 namespace viqu::io {
 
 void FrameSkipPolicy::Bad(const std::string& why) {
-  if (!allow_) throw InputError(why + " (--skip-bad-frames skips a lone unreadable frame)");
   if (!any_good_) throw InputError(why + "; the first frame is not skipped: check the dataset");
   if (last_bad_) throw InputError(why + "; the second unreadable frame in a row: the dataset looks broken");
+  if (!allow_) throw InputError(why + " (--skip-bad-frames skips a lone unreadable frame)");
   last_bad_ = true;
   ++skipped_;
   std::fprintf(stderr, "viqu: warning: %s; frame skipped\n", why.c_str());
