@@ -294,8 +294,11 @@ TrackResult Tracker::Track(const StereoFrame& frame, std::shared_ptr<const Frame
   last_carry_inliers_ = 0;
   if (!initialised_ || reinitialise) {
     // A new map segment continues from the last estimate: the frame carried from the last one's
-    // points when it can be, else dead reckoning through the outage.
-    cur_.T_c_w = initialised_ ? (have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w) : Eigen::Isometry3d::Identity();
+    // points when it can be, else dead reckoning through the outage. Before the first map (the
+    // camera dark from the start), an external motion prior (leg odometry + IMU) carries the
+    // pose from the first frame's, so that the map starts where the robot has walked to.
+    cur_.T_c_w = initialised_ ? (have_velocity_ ? velocity_ * last_.T_c_w : last_.T_c_w)
+                              : (r.external_prior ? velocity_ * last_.T_c_w : Eigen::Isometry3d::Identity());
     if (reinitialise && !r.external_prior) {
       Eigen::Isometry3d carried;
       if (CarryFromLastFrame(cur_.T_c_w, &carried, &r.carry_inliers)) {
