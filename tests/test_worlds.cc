@@ -14,6 +14,7 @@
 
 #include "sim/mujoco_handles.h"
 #include "sim/scene_composer.h"
+#include "sim/terrain.h"
 #include "sim/stereo_renderer.h"
 
 namespace viqu::sim {
@@ -84,6 +85,11 @@ TEST(Worlds, ViewsFromTheRobotHaveManyFastCorners) {
       renderer = std::make_unique<StereoRenderer>(m.get(), opt);
       loaded = v.world;
     }
+    // The floor is drawn where the robot stands (MuJoCo collides with a plane everywhere but draws
+    // it only over its size: the corridor's far half was a black void until session 45).
+    const std::optional<FloorExtent> floor = FloorExtentOf(m.get());
+    ASSERT_TRUE(floor.has_value()) << v.world;
+    EXPECT_TRUE(floor->Holds({v.x, v.y})) << v.world << " at " << v.x << ", " << v.y << ": no floor drawn there";
     const double yaw = v.yaw_deg * M_PI / 180;
     const int root = m->jnt_qposadr[MjIdOrThrow(m.get(), mjOBJ_JOINT, "root", "rat")];
     mjtNum* q = d->qpos + root;
