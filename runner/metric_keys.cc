@@ -8,7 +8,7 @@ const std::vector<std::string>& MetricKeys() {
   static const std::vector<std::string> keys = [] {
     std::vector<std::string> k = {
         // the run (run_metrics.cc) and the replay (apps/slam_command.cc)
-        "scenario", "seed", "sim_time_s", "path_length_m", "robot.fell", "robot.steer_source", "camera.frames",
+        "scenario", "seed", "sim_time_s", "path_length_m", "robot.fell", "robot.fell_at_s", "robot.steer_source", "camera.frames",
         "dataset", "camera.frames_skipped", "format", "masks", "camera.calibration", "camera.fx", "camera.fy",
         "camera.cx", "camera.cy", "camera.width", "camera.height",
         // SLAM (slam_run.cc)

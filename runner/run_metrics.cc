@@ -32,6 +32,7 @@ void AddRunMetrics(const Scenario& s, const RunMetrics& m, JsonWriter* json) {
   j.Set("sim_time_s", m.sim_time_s);
   j.Set("path_length_m", m.path_length_m);
   j.Set("robot.fell", m.fell);
+  if (m.fell) j.Set("robot.fell_at_s", m.fell_at_s);
   j.Set("robot.steer_source", m.steer_source);
   j.Set("camera.frames", m.frames);
   j.Set("timing.render_ms_median", Median(m.render_ms));

@@ -13,6 +13,8 @@ struct RunMetrics {
   double wall_time_s = 0;             // (s)
   double path_length_m = 0;           // horizontal path of the trunk (m)
   bool fell = false;
+  double fell_at_s = 0;       // when the robot first fell (s; with fell)
+  std::string fell_how;       // "trunk tilted N deg" | "trunk touched the ground"
   std::vector<double> render_ms;      // per camera frame (ms)
   std::vector<double> track_ms;       // SLAM tracking per camera frame (ms)
   int frames = 0;                     // camera frames produced

@@ -20,6 +20,7 @@
 #include "runner/robot_rig.h"
 #include "runner/run_metrics.h"
 #include "runner/scenario_settings.h"
+#include "runner/scenario_warnings.h"
 #include "runner/sensor_clock.h"
 #include "runner/slam_run.h"
 #include "common/atomic_file.h"
@@ -118,6 +119,14 @@ sim::EurocRig MakeEurocRig(const Scenario& s, const sim::World& w, const Pinhole
   return rig;
 }
 
+// ", ROBOT FELL at 2.20 s (trunk touched the ground)" for the summary line; "" when it did not.
+std::string FellText(const RunMetrics& m) {
+  if (!m.fell) return "";
+  char text[128];
+  std::snprintf(text, sizeof text, ", ROBOT FELL at %.2f s (%s)", m.fell_at_s, m.fell_how.c_str());
+  return text;
+}
+
 }  // namespace
 
 int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer) {
@@ -145,6 +154,12 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
 
   RobotRig rig(s);
   sim::World& world = rig.world();
+  const bool dynamic_stage = settings && settings->mode != "visual" && settings->dynamic.method != "none";
+  for (const std::string& w : ScenarioWarnings(s, dynamic_stage ? settings->dynamic.method : "",
+                                               sim::FloorExtentOf(world.model()))) {
+    std::fprintf(stderr, "viqu: warning: %s: %s\n", s.source_file.empty() ? s.name.c_str() : s.source_file.c_str(),
+                 w.c_str());
+  }
   sim::RenderOptions ropt;
   ropt.width = s.sensors.camera.width;
   ropt.height = s.sensors.camera.height;
@@ -360,7 +375,13 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
         steer_pose = Pose2Of(steer_poses.Get(index - kSteerDelayFrames));
       }
     }
-    if (world.TrunkTiltRad() > kFallTiltRad || world.TrunkTouchesGround()) metrics.fell = true;
+    if (!metrics.fell && (world.TrunkTiltRad() > kFallTiltRad || world.TrunkTouchesGround())) {
+      metrics.fell = true;
+      metrics.fell_at_s = t_ns * 1e-9;
+      char how[64];
+      std::snprintf(how, sizeof how, "trunk tilted %.0f deg", world.TrunkTiltRad() * 180 / M_PI);
+      metrics.fell_how = world.TrunkTiltRad() > kFallTiltRad ? how : "trunk touched the ground";
+    }
     if (t_ns >= end_ns || (metrics.fell && !s.robot.allow_fall)) break;
     // A stop request (SIGINT, SIGTERM) ends the run here, between two physics steps: every
     // sample and frame so far is processed, and the outputs are finished as at the end.
@@ -409,7 +430,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   std::printf("viqu run %s: %.1f s simulated in %.1f s (real-time factor %.2fx), path %.2f m, %d frames, "
               "render %.1f ms median%s\n",
               s.name.c_str(), metrics.sim_time_s, metrics.wall_time_s, metrics.sim_time_s / metrics.wall_time_s,
-              metrics.path_length_m, metrics.frames, Median(metrics.render_ms), metrics.fell ? ", ROBOT FELL" : "");
+              metrics.path_length_m, metrics.frames, Median(metrics.render_ms), FellText(metrics).c_str());
   if (slam) std::printf("SLAM: %s\n", SlamSummaryLine(summary).c_str());
   if (lo) std::printf("%s\n", LoSummaryLine(lo_summary).c_str());
   std::printf("outputs: %s\n", OutputsLine(folder.final_path()).c_str());

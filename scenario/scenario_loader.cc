@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <set>
 
+#include "common/errors.h"
 #include "common/yaml_emit.h"
 #include "common/yaml_strict.h"
 
@@ -284,7 +285,12 @@ void ReadTerrain(YamlMapReader m, TerrainConfig* t) {
     s.Require("center");
     ReadVec2(&s, "center", &slope.center);
     ReadVec2(&s, "size", &slope.size, NumberRange::OpenClosed(0, 100));
-    s.Number("angle_deg", &slope.angle_deg, NumberRange::Open(-45, 45));
+    // The terrain builder's own limits (sim/terrain.cc): steeper ramps are beyond the trot.
+    s.Number("angle_deg", &slope.angle_deg, NumberRange::Closed(-30, 30));
+    if (slope.angle_deg == 0) {
+      throw InputError(s.Where("angle_deg") + ": key '" + s.KeyPath("angle_deg") +
+                       "' must not be 0 (a flat ramp; leave the slope out)");
+    }
     s.Number("yaw_deg", &slope.yaw_deg, NumberRange::Closed(-360, 360));
     s.RejectUnknownKeys();
     t->slopes.push_back(slope);

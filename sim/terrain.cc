@@ -92,4 +92,19 @@ void ApplyFloorFriction(mjModel* m, double friction, const std::string& world_fi
   m->geom_friction[3 * id] = friction;
 }
 
+std::optional<FloorExtent> FloorExtentOf(const mjModel* m) {
+  const int id = mj_name2id(m, mjOBJ_GEOM, "floor");
+  if (id < 0 || m->geom_type[id] != mjGEOM_PLANE) return std::nullopt;
+  const double hx = m->geom_size[3 * id], hy = m->geom_size[3 * id + 1];
+  if (!(hx > 0 && hy > 0)) return std::nullopt;  // size 0: an infinite plane
+  // The plane's half-sizes along its own axes, its frame (in the world body) turned about the
+  // vertical only: the box around it.
+  const double* q = m->geom_quat + 4 * id;  // w x y z
+  const double yaw = std::atan2(2 * (q[0] * q[3] + q[1] * q[2]), 1 - 2 * (q[2] * q[2] + q[3] * q[3]));
+  const double c = std::abs(std::cos(yaw)), sn = std::abs(std::sin(yaw));
+  const double ex = c * hx + sn * hy, ey = sn * hx + c * hy;
+  const double* pos = m->geom_pos + 3 * id;
+  return FloorExtent{pos[0] - ex, pos[0] + ex, pos[1] - ey, pos[1] + ey};
+}
+
 }  // namespace viqu::sim

@@ -5,6 +5,7 @@
 // carry a very low friction and the ground sets the friction the feet feel: the floor gets
 // terrain.friction (ApplyFloorFriction), and every patch is a thin textured box whose top surface
 // lies kPatchTop_m above the floor, so that a foot on it touches the patch only.
+#include <optional>
 #include <string>
 
 #include <mujoco/mujoco.h>
@@ -27,5 +28,13 @@ std::string TerrainXml(const TerrainConfig& terrain);
 // Sets the sliding friction of the geom named `floor`; throws viqu::InputError if it is absent
 // or the friction is not positive.
 void ApplyFloorFriction(mjModel* m, double friction, const std::string& world_file = "world");
+
+// The world's floor (the plane geom 'floor') in the ground plane: x in [x_min, x_max], y in
+// [y_min, y_max] (m). nullopt when there is no floor or it is an unbounded plane (size 0).
+struct FloorExtent {
+  double x_min = 0, x_max = 0, y_min = 0, y_max = 0;
+  bool Holds(const Vec2& p) const { return p[0] >= x_min && p[0] <= x_max && p[1] >= y_min && p[1] <= y_max; }
+};
+std::optional<FloorExtent> FloorExtentOf(const mjModel* m);
 
 }  // namespace viqu::sim

@@ -199,6 +199,16 @@ TEST_F(ConfigLoaderTest, BadChoice) {
   EXPECT_EQ(msg, ScenPath() + ":5:16: key 'robot.gait.type' expected one of trot, walk, got 'gallop'");
 }
 
+TEST_F(ConfigLoaderTest, SlopeAnglesBeyondTheTerrainsLimitsAreNamedWhereWritten) {
+  // The terrain builder takes ramps of up to 30 deg, not flat ones: refused here, with the line.
+  const std::string steep =
+      ErrorOf(std::string(kMinimal) + "terrain:\n  slopes: [{center: [3, 0], angle_deg: 35}]\n");
+  EXPECT_EQ(steep.rfind(ScenPath() + ":6:40: key 'terrain.slopes.0.angle_deg' expected a number in [-30, 30]", 0), 0u)
+      << steep;
+  const std::string flat = ErrorOf(std::string(kMinimal) + "terrain:\n  slopes: [{center: [3, 0], angle_deg: 0}]\n");
+  EXPECT_EQ(flat, ScenPath() + ":6:40: key 'terrain.slopes.0.angle_deg' must not be 0 (a flat ramp; leave the slope out)");
+}
+
 TEST_F(ConfigLoaderTest, MissingRequiredKey) {
   const std::string msg = ErrorOf("name: mini\nrobot:\n  model: rat.xml\n");
   EXPECT_EQ(msg, ScenPath() + ":1:1: missing required key 'world'");
