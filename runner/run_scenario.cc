@@ -131,7 +131,10 @@ std::string FellText(const RunMetrics& m) {
 
 int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer) {
   const auto wall_start = std::chrono::steady_clock::now();
-  if (s.robot.command.follow == "estimate" && !opt.slam) {
+  // Only waypoints are followed on a pose; a velocity schedule is open loop whatever `follow` says
+  // (ScenarioWarnings says so).
+  const bool steer_by_estimate = s.robot.command.follow == "estimate" && !s.robot.command.waypoints.empty();
+  if (steer_by_estimate && !opt.slam) {
     throw InputError(s.source_file + ": robot.command.follow: estimate needs the estimator; it cannot run with --no-slam");
   }
   // SLAM settings (scenario_settings.h); the resolved scenario records the values in effect.
@@ -178,7 +181,6 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
 
   RunMetrics metrics;
   metrics.renderer = renderer.device_description();
-  const bool steer_by_estimate = s.robot.command.follow == "estimate";
   if (steer_by_estimate) metrics.steer_source = "estimate";
   // The map is anchored at the true first camera pose, so that the estimate and the ground
   // truth share a frame (ATE aligns them anyway), as the run's files print it (9 decimals), so

@@ -32,6 +32,10 @@ std::vector<std::string> ScenarioWarnings(const Scenario& s, const std::string& 
                   end + ": it has no effect");
     }
   }
+  if (s.robot.command.follow == "estimate" && s.robot.command.waypoints.empty()) {
+    w.push_back("robot.command.follow: estimate steers waypoints; the velocity schedule is open loop, so it has no "
+                "effect");
+  }
   if (!dynamic_method.empty() && !s.sensors.camera.segmentation) {
     w.push_back("slam.dynamic.method " + dynamic_method +
                 " judges objects by their instance masks, but sensors.camera.segmentation is false: no object is judged");

@@ -64,6 +64,13 @@ TEST(ScenarioWarnings, NameWhatHasNoEffectOrLiesOffTheFloor) {
                       "sensors.camera.segmentation is false"));
   EXPECT_TRUE(Has(w2, "robot.start.xy (-100, -100) lies outside"));
   EXPECT_EQ(runner::ScenarioWarnings(s, "", std::nullopt).size(), 2u);  // the two past the end
+  // Steering on the estimate needs waypoints: a velocity schedule is open loop.
+  s.robot.command.follow = "estimate";
+  EXPECT_FALSE(Has(runner::ScenarioWarnings(s, "", std::nullopt), "robot.command.follow"));
+  s.robot.command.waypoints.clear();
+  s.robot.command.velocity = {VelocityCommand{0, 0.1, 0}};
+  EXPECT_TRUE(Has(runner::ScenarioWarnings(s, "", std::nullopt),
+                  "robot.command.follow: estimate steers waypoints; the velocity schedule is open loop"));
 }
 
 }  // namespace
