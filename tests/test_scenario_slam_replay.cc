@@ -271,6 +271,19 @@ void ExpectDynamicStageAtWork(const fs::path& live) {
   EXPECT_GT(share, 0.0);
 }
 
+// A viqu-format replay of a live run: the same trajectory, tracking and decisions, every metrics
+// key listed (runner/metric_keys.h), the same path length and share of path, no frame skipped.
+void ExpectTheLiveRun(const fs::path& live, const fs::path& replay) {
+  ExpectSameTrajectory(live / "trajectory_est.txt", replay / "trajectory_est.txt");
+  ExpectSameTracking(live, replay);
+  ExpectSameDecisions(live, replay);
+  ExpectEveryMetricKeyListed(live);
+  ExpectEveryMetricKeyListed(replay);
+  EXPECT_NEAR(Metrics(replay)["path_length_m"].as<double>(), Metrics(live)["path_length_m"].as<double>(), 1e-6);
+  EXPECT_NEAR(Metrics(replay)["ate"]["rmse_pct_path"].as<double>(), Metrics(live)["ate"]["rmse_pct_path"].as<double>(), 1e-6);
+  EXPECT_EQ(Metrics(replay)["camera"]["frames_skipped"].as<int>(), 0);
+}
+
 TEST(SlamReplay, ViquFormatReplaysTheLiveStereoRunWithItsDynamicDecisions) {
   Scenario s = ShortRoomWithPerson("", "full");
   // A worse detector: wrong categories (the same id under several) and spurious masks (new ids).
@@ -302,16 +315,7 @@ TEST(SlamReplay, ViquFormatReplaysTheLiveStereoRunWithItsDynamicDecisions) {
   args.format = "viqu";
   args.out_dir = Fresh("stereo_viqu").string();
   ASSERT_EQ(app::RunSlamCommand(args), 0);
-  ExpectSameTrajectory(live / "trajectory_est.txt", fs::path(args.out_dir) / "trajectory_est.txt");
-  ExpectSameTracking(live, args.out_dir);
-  ExpectSameDecisions(live, args.out_dir);
-  ExpectEveryMetricKeyListed(live);
-  ExpectEveryMetricKeyListed(args.out_dir);
-  // The same path length, hence the same share of path, as the live run reported.
-  EXPECT_NEAR(Metrics(args.out_dir)["path_length_m"].as<double>(), Metrics(live)["path_length_m"].as<double>(), 1e-6);
-  EXPECT_NEAR(Metrics(args.out_dir)["ate"]["rmse_pct_path"].as<double>(), Metrics(live)["ate"]["rmse_pct_path"].as<double>(),
-              1e-6);
-  EXPECT_EQ(Metrics(args.out_dir)["camera"]["frames_skipped"].as<int>(), 0);
+  ExpectTheLiveRun(live, args.out_dir);
   // The replay fused leg odometry as the live run did: every frame but the first corrected it.
   EXPECT_TRUE(Metrics(args.out_dir)["lo"]["fused"].as<bool>());
   EXPECT_EQ(Metrics(args.out_dir)["lo"]["fusion_corrections"].as<int>(), Metrics(live)["lo"]["fusion_corrections"].as<int>());
@@ -400,16 +404,7 @@ TEST(SlamReplay, RgbdRunReplaysFromSeg0AndFromTumWithMasks) {
   args.format = "viqu";
   args.out_dir = Fresh("rgbd_viqu").string();
   ASSERT_EQ(app::RunSlamCommand(args), 0);
-  ExpectSameTrajectory(live / "trajectory_est.txt", fs::path(args.out_dir) / "trajectory_est.txt");
-  ExpectSameTracking(live, args.out_dir);
-  ExpectSameDecisions(live, args.out_dir);
-  ExpectEveryMetricKeyListed(live);
-  ExpectEveryMetricKeyListed(args.out_dir);
-  // The same path length, hence the same share of path, as the live run reported.
-  EXPECT_NEAR(Metrics(args.out_dir)["path_length_m"].as<double>(), Metrics(live)["path_length_m"].as<double>(), 1e-6);
-  EXPECT_NEAR(Metrics(args.out_dir)["ate"]["rmse_pct_path"].as<double>(), Metrics(live)["ate"]["rmse_pct_path"].as<double>(),
-              1e-6);
-  EXPECT_EQ(Metrics(args.out_dir)["camera"]["frames_skipped"].as<int>(), 0);
+  ExpectTheLiveRun(live, args.out_dir);
 
   // seg0 renamed to the rgb images' names (rgb.txt: "t rgb/<t>.png", in the order of seg0's rows).
   std::map<int64_t, std::string> rgb_name;
