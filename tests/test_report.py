@@ -88,6 +88,12 @@ class RunReport(unittest.TestCase):
         self.assertAlmostEqual(share[list(np.round(ts, 6)).index(3.0)], want * 100, places=9)
         self.assertGreater(want, 0)
 
+    def test_sweep_options_on_a_run_folder_are_refused(self):
+        r = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "report.py"), self.run, "--x", "seed"],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--x, --y and --metric are for a sweep folder", r.stderr)
+
     def test_incomplete_folder_is_refused(self):
         os.remove(os.path.join(self.run, "run_complete.json"))
         r = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "report.py"), self.run],
@@ -119,6 +125,17 @@ class SweepReport(unittest.TestCase):
             r = subprocess.run(py + ["--x", "c"], capture_output=True, text=True)
             self.assertEqual(r.returncode, 2)
             self.assertIn("no column 'c'", r.stderr)
+            # Without --metric: the sweep's first metric, as sweep.yaml lists it.
+            with open(os.path.join(tmp, "results.csv"), "w") as f:
+                f.write("id,scenario,seed,a,ate.rmse_m,tracking.lost_frames,exit_code,status,wall_s\n")
+                for n, a in enumerate((1, 2, 4)):
+                    f.write(f"p{n:04d},s,1,{a},{a * 0.1},{10 * a},0,ok,1\n")
+            with open(os.path.join(tmp, "sweep.yaml"), "w") as f:
+                f.write("scenarios: []\nmetrics: [ate.rmse_m, tracking.lost_frames]\n")
+            shutil.rmtree(os.path.join(tmp, "plots"))
+            r = subprocess.run(py + ["--x", "a"], capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertTrue(os.path.exists(os.path.join(tmp, "plots", "line_ate.rmse_m.png")), r.stdout)
         finally:
             shutil.rmtree(tmp)
 

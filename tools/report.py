@@ -315,7 +315,15 @@ def report_sweep(sweep_dir, x, y, metric):
     if not results:
         raise BadInput(f"{sweep_dir}/results.csv: missing or empty (run the sweep or viqu sweep --collect)")
     columns = results[0].keys()
-    metric = metric or [c for c in columns if c not in ("id", "scenario", "seed", "exit_code", "status", "wall_s")][-1]
+    if not metric:
+        # The sweep's first metric (its `metrics:` list, as viqu sweep resolved it into sweep.yaml).
+        try:
+            with open(os.path.join(sweep_dir, "sweep.yaml")) as f:
+                listed = (yaml.safe_load(f) or {}).get("metrics") or []
+        except (OSError, yaml.YAMLError, AttributeError):
+            listed = []
+        metric = next((m for m in listed if m in columns), None) or \
+            [c for c in columns if c not in ("id", "scenario", "seed", "exit_code", "status", "wall_s")][-1]
     for key, what in ((x, "--x"), (y, "--y"), (metric, "--metric")):
         if key and key not in columns:
             raise BadInput(f"{sweep_dir}/results.csv: no column '{key}' ({what}); columns: {', '.join(columns)}")
@@ -383,13 +391,15 @@ def main(argv):
     p.add_argument("dir", help="a run folder or a sweep folder")
     p.add_argument("--x", help="sweep: grid key on the x axis")
     p.add_argument("--y", help="sweep: grid key on the y axis (heatmap)")
-    p.add_argument("--metric", help="sweep: the metric (default: the last metric column)")
+    p.add_argument("--metric", help="sweep: the metric (default: the sweep's first metric)")
     a = p.parse_args(argv)
     try:
         if not os.path.isdir(a.dir):
             raise BadInput(f"{a.dir}: not a folder")
         if os.path.exists(os.path.join(a.dir, "sweep.yaml")):
             out, made = report_sweep(a.dir, a.x, a.y, a.metric)
+        elif a.x or a.y or a.metric:
+            raise BadInput(f"{a.dir}: a run folder; --x, --y and --metric are for a sweep folder")
         else:
             out, made = report_run(a.dir)
     except BadInput as e:
