@@ -71,13 +71,9 @@ void WritePlan(const SweepSpec& spec, const std::vector<SweepPoint>& points, con
   std::snprintf(seconds, sizeof seconds, "%.9g", spec.timeout_s);
   const std::string limit = spec.timeout_s > 0 ? "timeout -k 10 " + std::string(seconds) + " " : "";
   for (const SweepPoint& p : points) {
-    std::string line = limit;
-    bool first = true;
-    for (const std::string& a : PointArgs(viqu_exe, p, dir)) {
-      line += (first ? "" : " ") + ShellQuote(a);
-      first = false;
-    }
-    manifest += line + " > " + ShellQuote(dir + "/logs/" + p.id + ".log") + " 2>&1\n";
+    std::string line;
+    for (const std::string& a : PointArgs(viqu_exe, p, dir)) line += (line.empty() ? "" : " ") + ShellQuote(a);
+    manifest += limit + line + " > " + ShellQuote(dir + "/logs/" + p.id + ".log") + " 2>&1\n";
   }
   WriteFileAtomic(dir + "/manifest.txt", manifest);
 }

@@ -38,6 +38,7 @@
 #include "sim/trajectory_writer.h"
 #include "sim/depth_quantisation.h"
 #include "sim/tum_recorder.h"
+#include "slam/core/dynamic_objects.h"
 #include "slam/features/orb_extractor.h"
 #include "slam/settings/slam_settings.h"
 
@@ -157,7 +158,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
 
   RobotRig rig(s);
   sim::World& world = rig.world();
-  const bool dynamic_stage = settings && settings->mode != "visual" && settings->dynamic.method != "none";
+  const bool dynamic_stage = settings && slam::DynamicMethodOf(*settings) != slam::DynamicMethod::kNone;
   for (const std::string& w : ScenarioWarnings(s, dynamic_stage ? settings->dynamic.method : "",
                                                sim::FloorExtentOf(world.model()))) {
     std::fprintf(stderr, "viqu: warning: %s: %s\n", s.source_file.empty() ? s.name.c_str() : s.source_file.c_str(),

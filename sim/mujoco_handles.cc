@@ -1,5 +1,6 @@
 #include "sim/mujoco_handles.h"
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -60,7 +61,8 @@ ModelPtr LoadModelFile(const std::string& path) {
   return m;
 }
 
-ModelPtr LoadModelString(const std::string& xml, const std::string& what) {
+ModelPtr LoadModelString(const std::string& xml, const std::string& what,
+                         const std::function<std::string(int)>& source_of_line) {
   InstallMujocoHandlers();
   char dir_template[] = "/tmp/viqu-scene-XXXXXX";
   const char* dir = ::mkdtemp(dir_template);
@@ -75,7 +77,17 @@ ModelPtr LoadModelString(const std::string& xml, const std::string& what) {
   ModelPtr m(mj_loadXML(file.c_str(), nullptr, err, sizeof(err)));
   std::remove(file.c_str());
   ::rmdir(dir);
-  if (!m) throw InputError(what + ": cannot load composed MuJoCo model: " + err);
+  if (!m) {
+    static const std::regex kLine(", line ([0-9]+)");
+    std::string message = err;
+    std::smatch at;
+    const std::string source =
+        source_of_line && std::regex_search(message, at, kLine) ? source_of_line(std::stoi(at[1])) : "";
+    if (source.empty()) throw InputError(what + ": cannot load composed MuJoCo model: " + message);
+    message = std::regex_replace(message, kLine, "");
+    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+    throw InputError(source + ": cannot load MuJoCo model: " + message + " (the scene of " + what + ")");
+  }
   return m;
 }
 

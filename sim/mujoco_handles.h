@@ -1,5 +1,6 @@
 #pragma once
 // RAII ownership of MuJoCo's model and data, and an error handler that throws instead of exiting.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,8 +29,11 @@ std::vector<std::string> TakeMujocoWarnings();
 ModelPtr LoadModelFile(const std::string& path);
 
 // Loads MJCF text (written to a temporary file next to nothing: paths in it must be
-// absolute-resolvable, see scene_composer.h). Throws viqu::InputError on failure.
-ModelPtr LoadModelString(const std::string& xml, const std::string& what);
+// absolute-resolvable, see scene_composer.h). Throws viqu::InputError on failure naming `what`;
+// with `source_of_line` ("FILE:LINE" that line N of `xml` came from, "" when none, e.g.
+// SourceOfComposedLine) an error MuJoCo reports at a line of `xml` names that file and line.
+ModelPtr LoadModelString(const std::string& xml, const std::string& what,
+                         const std::function<std::string(int)>& source_of_line = {});
 
 // Name of object `id` of type `type`, or "" if unnamed.
 std::string MjName(const mjModel* m, mjtObj type, int id);

@@ -1,8 +1,6 @@
 #include "sim/world.h"
 
-#include <cctype>
 #include <cmath>
-#include <regex>
 
 #include "common/errors.h"
 #include "sim/scene_composer.h"
@@ -30,20 +28,9 @@ World::World(const Scenario& s, const std::array<double, kNumJoints>& q_stand, d
   header.offscreen_width = std::max(s.sensors.camera.width, 64);
   header.offscreen_height = std::max(s.sensors.camera.height, 64);
   xml_ = ComposeSceneXml(s, header, {ObstaclesXml(s.obstacles), TerrainXml(s.terrain)});
-  const std::string scene_of = s.source_file.empty() ? s.name : s.source_file;
-  try {
-    model_ = LoadModelString(xml_, scene_of);
-  } catch (const InputError& e) {
-    // MuJoCo names a line of the composed scene: name the world or robot file's own line instead.
-    static const std::regex kLine(", line ([0-9]+)");
-    const std::string what = e.what();
-    std::smatch m;
-    const std::string source = std::regex_search(what, m, kLine) ? SourceOfComposedLine(xml_, std::stoi(m[1])) : "";
-    if (source.empty()) throw;
-    std::string mujoco = std::regex_replace(what.substr(what.find(": cannot load composed MuJoCo model: ") + 2), kLine, "");
-    while (!mujoco.empty() && std::isspace(static_cast<unsigned char>(mujoco.back()))) mujoco.pop_back();
-    throw InputError(source + ": " + mujoco + " (the scene of " + scene_of + ")");
-  }
+  // MuJoCo names a line of the composed scene: the error names the world or robot file's own line.
+  model_ = LoadModelString(xml_, s.source_file.empty() ? s.name : s.source_file,
+                           [this](int line) { return SourceOfComposedLine(xml_, line); });
   mjModel* m = model_.get();
   ApplyFloorFriction(m, s.terrain.friction, s.world);
   timestep_ns_ = std::llround(m->opt.timestep * 1e9);
