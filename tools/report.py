@@ -5,8 +5,12 @@ A run folder (complete: run_complete.json) gives DIR/plots/
   trajectory_top.png   top view: ground truth, SLAM estimate, leg odometry (when present), the
                        obstacles' paths, lost and relocalised frames marked;
   error_time.png       position error of the aligned estimate over time, with the moving
-                       obstacles' share of the image on a second axis;
+                       obstacles' share of the image on a second axis (blank while the camera
+                       was dark: the scenario's sensors.camera.dropouts, shaded);
   dynamic_timeline.png per object: when it truly moved and when it was judged dynamic.
+A folder may lack what its run did not make (a --no-slam run: no estimate, leg odometry or
+dynamic.csv; a replay: no scenario.yaml, no truth of the objects' motion, perhaps no ground
+truth): each plot or series left out is one warning line on stderr, exit code 0.
 A sweep folder (sweep.yaml, results.csv) gives DIR/plots/
   heatmap_<metric>.png  mean of a metric over two grid keys (--x, --y);
   line_<metric>.png     mean and seed spread of a metric over one grid key (--x).
@@ -17,6 +21,7 @@ file), as the viqu program does.
 import argparse
 import csv
 import json
+import math
 import os
 import sys
 
@@ -36,6 +41,11 @@ class BadInput(Exception):
     pass
 
 
+def warn(run_dir, text):
+    """One line on stderr for a plot or series left out, and why (the report still succeeds)."""
+    print(f"viqu report: warning: {run_dir}: {text}", file=sys.stderr)
+
+
 def read_tum(path):
     """(t, xyz) arrays of a TUM trajectory file; None when the file is absent."""
     if not os.path.exists(path):
@@ -50,26 +60,43 @@ def read_tum(path):
             try:
                 if len(parts) != 8:
                     raise ValueError
-                rows.append([float(x) for x in parts[:4]])
+                values = [float(x) for x in parts]
             except ValueError:
                 raise BadInput(f"{path}:{n}: expected 8 numbers 't tx ty tz qx qy qz qw'") from None
+            if not all(math.isfinite(v) for v in values):  # as viqu eval: nan, inf
+                raise BadInput(f"{path}:{n}: value is not a finite number")
+            rows.append(values[:4])
     a = np.array(rows, dtype=float).reshape(-1, 4)
     return a[:, 0], a[:, 1:4]
 
 
-def read_csv(path, numeric=()):
-    """Rows of a CSV file as dicts ([] when absent); the `numeric` columns must be numbers."""
+def read_csv(path, numeric=(), optional=()):
+    """Rows of a CSV file as dicts ([] when absent); the `numeric` columns must be finite numbers,
+    the `optional` ones finite numbers or blank (not known: dynamic.csv's truth columns in a
+    replay, or for an object reported but not truly in view)."""
     if not os.path.exists(path):
         return []
     with open(path) as f:
         rows = list(csv.DictReader(f))
     for n, r in enumerate(rows, 2):
-        for c in numeric:
+        for c in tuple(numeric) + tuple(optional):
             try:
-                float(r[c])
+                if c in optional and r[c] == "":
+                    continue
+                if not math.isfinite(float(r[c])):
+                    raise ValueError
             except (KeyError, TypeError, ValueError):
                 raise BadInput(f"{path}:{n}: column '{c}' is not a number") from None
     return rows
+
+
+def known(rows, column):
+    """Whether any row has a value in `column` (dynamic.csv's truth columns are blank throughout
+    in a replay, which has no truth of the objects' motion)."""
+    return any(r.get(column) not in ("", None) for r in rows)
+
+
+DYNAMIC_TRUTH = ("visible_px", "truly_moving")  # dynamic.csv's columns that may be blank
 
 
 def read_scenario(run_dir):
@@ -79,9 +106,56 @@ def read_scenario(run_dir):
         return {}
     try:
         with open(path) as f:
-            return yaml.safe_load(f) or {}
+            scenario = yaml.safe_load(f) or {}
     except yaml.YAMLError as e:
         raise BadInput(f"{path}: {e}") from None
+    if not isinstance(scenario, dict):
+        raise BadInput(f"{path}: not a scenario (a mapping of keys)")
+    return scenario
+
+
+def camera_config(run_dir):
+    """The scenario's sensors.camera block ({} without one)."""
+    sensors = read_scenario(run_dir).get("sensors") or {}
+    cam = (sensors.get("camera") or {}) if isinstance(sensors, dict) else None
+    if not isinstance(cam, dict):
+        raise BadInput(f"{os.path.join(run_dir, 'scenario.yaml')}: sensors.camera: expected a mapping")
+    return cam
+
+
+def camera_dropouts(run_dir):
+    """The camera's outages [(t0, t1), ...] in s, from the scenario's sensors.camera.dropouts: both
+    images black for t0 <= t < t1, nothing in view ([] without any, or without scenario.yaml)."""
+    raw = camera_config(run_dir).get("dropouts") or []
+    try:
+        if not isinstance(raw, list) or not all(isinstance(d, list) and len(d) == 2 for d in raw):
+            raise ValueError
+        out = [(float(t0), float(t1)) for t0, t1 in raw]
+        if not all(0 <= t0 < t1 < math.inf for t0, t1 in out):
+            raise ValueError
+    except (TypeError, ValueError):
+        raise BadInput(f"{os.path.join(run_dir, 'scenario.yaml')}: sensors.camera.dropouts: expected "
+                       "[[t0_s, t1_s], ...] with 0 <= t0_s < t1_s") from None
+    return out
+
+
+def in_dropout(t, dropouts):
+    """Whether the camera was dark at t (s), to the nanosecond, as the run decided it."""
+    t_ns = round(t * 1e9)
+    return any(round(t0 * 1e9) <= t_ns < round(t1 * 1e9) for t0, t1 in dropouts)
+
+
+def shade_dropouts(ax, dropouts, t_min, t_max):
+    """The camera's dark intervals within [t_min, t_max], shaded and labelled "camera dark"."""
+    first = True
+    for t0, t1 in dropouts:
+        a, b = max(t0, t_min), min(t1, t_max)
+        if a >= b:
+            continue
+        ax.axvspan(a, b, color="0.5", alpha=0.25, lw=0, label="camera dark" if first else None, gid="camera_dark")
+        ax.text((a + b) / 2, 0.98, "camera dark", transform=ax.get_xaxis_transform(), ha="center", va="top",
+                fontsize=8, color="0.3")
+        first = False
 
 
 def associate(t_est, t_gt):
@@ -179,21 +253,46 @@ def plot_trajectory_top(run_dir):
     ax.set_ylabel("y (m)")
     ax.set_title(f"{scenario.get('name', os.path.basename(run_dir))}: top view (left camera)")
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    fig.tight_layout()
+    handles, labels = ax.get_legend_handles_labels()
+    if handles:
+        # Below the axes, so that it covers none of the obstacles' names drawn in the plot.
+        leg = fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
+        height = leg.get_window_extent(fig.canvas.get_renderer()).height / fig.bbox.height
+        fig.tight_layout(rect=(0, height + 0.01, 1, 1))
+    else:
+        fig.tight_layout()
     return fig
 
 
 def moving_share(run_dir):
-    """(t, share) of the left image covered by truly moving obstacles, from dynamic.csv."""
-    cam = (read_scenario(run_dir).get("sensors") or {}).get("camera") or {}
-    pixels = float(cam.get("width", 640)) * float(cam.get("height", 480))
+    """(t, share) of the left image covered by truly moving obstacles, from dynamic.csv; None when
+    that is not known (visible_px blank throughout: a replay has no truth of the objects). A blank
+    row in a live run is an object reported but not truly in view: no share. While the camera was
+    dark (sensors.camera.dropouts) nothing was in view: NaN there, one at each outage's start at
+    least, so that a curve breaks."""
+    cam = camera_config(run_dir)
+    try:
+        pixels = float(cam.get("width", 640)) * float(cam.get("height", 480))
+    except (TypeError, ValueError):
+        raise BadInput(f"{os.path.join(run_dir, 'scenario.yaml')}: sensors.camera: width and height "
+                       "must be numbers") from None
+    rows = read_csv(os.path.join(run_dir, "dynamic.csv"), numeric=("t_s",), optional=DYNAMIC_TRUTH)
+    if rows and not known(rows, "visible_px"):
+        return None
     share = {}
-    for r in read_csv(os.path.join(run_dir, "dynamic.csv"), numeric=("t_s", "visible_px")):
+    for r in rows:
         t = float(r["t_s"])
         share.setdefault(t, 0.0)
-        if r.get("truly_moving") == "1":
+        if r.get("truly_moving") == "1" and r["visible_px"] != "":
             share[t] += float(r["visible_px"]) / pixels
+    dropouts = camera_dropouts(run_dir)
+    if share:
+        for t0, _ in dropouts:
+            if min(share) < t0 < max(share):
+                share.setdefault(t0, math.nan)
+    for t in share:
+        if in_dropout(t, dropouts):
+            share[t] = math.nan
     ts = np.array(sorted(share))
     return ts, np.array([share[t] for t in ts])
 
@@ -204,14 +303,27 @@ def plot_error_time(run_dir):
         raise BadInput(f"{run_dir}: error_time.png needs trajectory_gt.txt and trajectory_est.txt")
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
     t, e = aligned_errors(est, gt)
+    if len(t) == 0:
+        warn(run_dir, f"error_time.png leaves out the SLAM estimate's error: fewer than 3 of its poses "
+                      f"have a ground-truth stamp within {MAX_ASSOC_S} s")
     ax.plot(t, e * 1000, "-", color="tab:blue", label="SLAM estimate", gid="est_error")
     if lo is not None:
         tl, el = aligned_errors(lo, gt)
+        if len(tl) == 0:
+            warn(run_dir, f"error_time.png leaves out the leg odometry's error: fewer than 3 of its poses "
+                          f"have a ground-truth stamp within {MAX_ASSOC_S} s")
         ax.plot(tl, el * 1000, "-", color="tab:orange", lw=1, label="leg odometry + IMU", gid="lo_error")
     ax.set_xlabel("time (s)")
     ax.set_ylabel("position error after SE(3) alignment (mm)")
     ax.grid(True, alpha=0.3)
-    ts, share = moving_share(run_dir)
+    stamps = np.concatenate([est[0], gt[0]])
+    shade_dropouts(ax, camera_dropouts(run_dir), stamps.min(initial=0), stamps.max(initial=0))
+    moving = moving_share(run_dir)
+    if moving is None:
+        warn(run_dir, "dynamic.csv's visible_px is blank throughout (a replay: no truth of the objects): "
+                      "error_time.png leaves out the moving obstacles' share of the image")
+        moving = (np.zeros(0), np.zeros(0))
+    ts, share = moving
     if len(ts):
         ax2 = ax.twinx()
         ax2.fill_between(ts, share * 100, step="mid", color="tab:red", alpha=0.15)
@@ -245,7 +357,11 @@ def spans(ts, flags, period):
 
 
 def plot_dynamic_timeline(run_dir):
-    rows = read_csv(os.path.join(run_dir, "dynamic.csv"), numeric=("t_s",))
+    rows = read_csv(os.path.join(run_dir, "dynamic.csv"), numeric=("t_s",), optional=DYNAMIC_TRUTH)
+    truth = known(rows, "truly_moving")
+    if rows and not truth:
+        warn(run_dir, "dynamic.csv's truly_moving is blank throughout (a replay: no truth of the objects): "
+                      "dynamic_timeline.png leaves out when they truly moved")
     objects = []
     for r in rows:
         if r["object"] not in objects:
@@ -259,14 +375,20 @@ def plot_dynamic_timeline(run_dir):
         moving = [r.get("truly_moving") == "1" for r in mine]
         decided = [r.get("decided_dynamic") == "1" for r in mine]
         ax.broken_barh(spans(ts, [True] * len(ts), period), (k - 0.4, 0.8), color="0.9")
-        ax.broken_barh(spans(ts, moving, period), (k - 0.35, 0.3), color="tab:orange",
-                       label="truly moving" if k == 0 else None)
+        if truth:  # drawn where known: a blank is not known
+            ax.broken_barh(spans(ts, moving, period), (k - 0.35, 0.3), color="tab:orange",
+                           label="truly moving" if k == 0 else None)
         ax.broken_barh(spans(ts, decided, period), (k + 0.05, 0.3), color="tab:red",
                        label="judged dynamic" if k == 0 else None)
     ax.set_yticks(range(len(objects)))
     ax.set_yticklabels(objects)
     ax.set_xlabel("time (s)")
-    ax.set_title("dynamic objects: truth (orange) and decision (red); grey: in view")
+    if truth:
+        ax.set_title("dynamic objects: truth (orange) and decision (red); grey: in view")
+    else:
+        ax.set_title("dynamic objects: decision (red); grey: reported; truth not known")
+    if all_t:
+        shade_dropouts(ax, camera_dropouts(run_dir), all_t[0], all_t[-1] + period)
     ax.grid(True, axis="x", alpha=0.3)
     if objects:
         ax.legend(loc="lower right", fontsize=8)
@@ -274,21 +396,58 @@ def plot_dynamic_timeline(run_dir):
     return fig
 
 
+def left_out(run_dir):
+    """Warning lines for what a complete folder lacks: each plot or series left out, and why."""
+    def have(name):
+        return os.path.exists(os.path.join(run_dir, name))
+    notes = []
+    gt, est, lo = have("trajectory_gt.txt"), have("trajectory_est.txt"), have("trajectory_lo.txt")
+    if not gt and not est:
+        return notes  # plot_trajectory_top refuses it
+    why_est = "no trajectory_est.txt (a --no-slam run?)"
+    why_gt = "no trajectory_gt.txt (a replay of a dataset without ground truth?)"
+    if not est:
+        notes.append(f"{why_est}: trajectory_top.png leaves out the SLAM estimate (and its lost and relocalised frames)")
+        notes.append(f"{why_est}: no error_time.png (the SLAM estimate's error)")
+    elif not have("tracking.csv"):
+        notes.append("no tracking.csv: trajectory_top.png leaves out the lost and relocalised frames")
+    if not gt:
+        notes.append(f"{why_gt}: trajectory_top.png leaves out the ground truth")
+        notes.append(f"{why_gt}: no error_time.png (the error needs the ground truth)")
+    if not lo:
+        where = "trajectory_top.png and error_time.png leave" if gt and est else "trajectory_top.png leaves"
+        notes.append(f"no trajectory_lo.txt (leg odometry runs live with SLAM in slam.mode full only): "
+                     f"{where} out the leg odometry")
+    if not have("scenario.yaml"):
+        notes.append("no scenario.yaml (a replay?): trajectory_top.png leaves out the obstacles' paths")
+    if not have("dynamic.csv"):
+        notes.append("no dynamic.csv (a --no-slam run?): no dynamic_timeline.png")
+    elif not read_csv(os.path.join(run_dir, "dynamic.csv")):
+        notes.append("dynamic.csv has no rows (no movable object was seen or reported): no dynamic_timeline.png")
+    return notes
+
+
 def report_run(run_dir):
     require_complete_run(run_dir)
-    out = os.path.join(run_dir, "plots")
-    os.makedirs(out, exist_ok=True)
-    made = []
     plots = [("trajectory_top.png", plot_trajectory_top)]
     if all(os.path.exists(os.path.join(run_dir, f)) for f in ("trajectory_est.txt", "trajectory_gt.txt")):
         plots.append(("error_time.png", plot_error_time))
     if read_csv(os.path.join(run_dir, "dynamic.csv")):
         plots.append(("dynamic_timeline.png", plot_dynamic_timeline))
-    for name, make in plots:
-        fig = make(run_dir)
+    for note in left_out(run_dir):
+        warn(run_dir, note)
+    figures = []
+    try:
+        for name, make in plots:  # all drawn before any is written: bad input leaves no plots
+            figures.append((name, make(run_dir)))
+    except BadInput:
+        plt.close("all")
+        raise
+    out = os.path.join(run_dir, "plots")
+    os.makedirs(out, exist_ok=True)
+    for name, fig in figures:
         save(fig, os.path.join(out, name))
-        made.append(name)
-    return out, made
+    return out, [name for name, _ in figures]
 
 
 def save(fig, path):
@@ -310,18 +469,31 @@ def grid_values(results, key):
     return sorted({r[key] for r in results}, key=lambda v: (number(v) is None, number(v) or 0, v))
 
 
+RESULT_COLUMNS = ("id", "seed", "exit_code", "status", "wall_s")  # results.csv's own, no grid keys
+
+
+def read_sweep_spec(sweep_dir):
+    """(grid keys or None when sweep.yaml lists none, metrics) of sweep.yaml, as viqu sweep resolved
+    it; an unreadable file gives (None, []) (results.csv is what the report reads)."""
+    try:
+        with open(os.path.join(sweep_dir, "sweep.yaml")) as f:
+            spec = yaml.safe_load(f) or {}
+        grid = spec.get("grid")
+        metrics = spec.get("metrics") or []
+    except (OSError, yaml.YAMLError, AttributeError):
+        return None, []
+    grid = [str(k) for k in grid] if isinstance(grid, dict) else None
+    return grid, [str(m) for m in metrics] if isinstance(metrics, list) else []
+
+
 def report_sweep(sweep_dir, x, y, metric):
     results = read_csv(os.path.join(sweep_dir, "results.csv"))
     if not results:
         raise BadInput(f"{sweep_dir}/results.csv: missing or empty (run the sweep or viqu sweep --collect)")
     columns = results[0].keys()
+    grid, listed = read_sweep_spec(sweep_dir)
     if not metric:
         # The sweep's first metric (its `metrics:` list, as viqu sweep resolved it into sweep.yaml).
-        try:
-            with open(os.path.join(sweep_dir, "sweep.yaml")) as f:
-                listed = (yaml.safe_load(f) or {}).get("metrics") or []
-        except (OSError, yaml.YAMLError, AttributeError):
-            listed = []
         metric = next((m for m in listed if m in columns), None) or \
             [c for c in columns if c not in ("id", "scenario", "seed", "exit_code", "status", "wall_s")][-1]
     for key, what in ((x, "--x"), (y, "--y"), (metric, "--metric")):
@@ -329,6 +501,19 @@ def report_sweep(sweep_dir, x, y, metric):
             raise BadInput(f"{sweep_dir}/results.csv: no column '{key}' ({what}); columns: {', '.join(columns)}")
     if not x:
         raise BadInput("a sweep report needs --x KEY (a grid key), and --y KEY for a heatmap")
+    # The axes: the grid's keys (sweep.yaml's; without a grid there, the columns that are neither
+    # results.csv's own nor a metric) or the scenario; never a metric, the seed or the same key twice.
+    if grid is not None:
+        keys = [c for c in columns if c in grid or c == "scenario"]
+    else:
+        keys = [c for c in columns if c not in RESULT_COLUMNS and c not in listed and c != metric]
+    for key, what in ((x, "--x"), (y, "--y")):
+        if key and key not in keys:
+            raise BadInput(f"{sweep_dir}/results.csv: '{key}' ({what}) is not a grid key; the grid keys: "
+                           f"{', '.join(keys) or 'none'}")
+    if y and x == y:
+        raise BadInput(f"{sweep_dir}: --x and --y name the same key '{x}'; a heatmap needs two grid keys "
+                       f"(or --x alone for a line)")
     out = os.path.join(sweep_dir, "plots")
     os.makedirs(out, exist_ok=True)
     safe = metric.replace("/", "_")
