@@ -18,6 +18,8 @@
 #include "common/errors.h"
 #include "common/stop_signal.h"
 #include "scenario/scenario_loader.h"
+#include "slam/settings/slam_settings.h"
+#include "viqu_version.h"  // generated at build time (cmake/write_version.cmake)
 
 namespace viqu::app {
 namespace {
@@ -34,8 +36,28 @@ std::string SelfPath() {
   return std::string(buf, static_cast<size_t>(n));
 }
 
+// A scenario refused a --set: when its key is a SLAM setting (`viqu slam`'s form, dynamic.method),
+// the message says the scenario's form (slam.dynamic.method).
+Scenario LoadScenarioOrSuggest(const RunArgs& args) {
+  try {
+    return LoadScenario(args.scenario, args.sets);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    for (const std::string& set : args.sets) {
+      if (what.rfind("--set " + set + ":", 0) != 0 || what.find("unknown key") == std::string::npos) continue;
+      try {
+        slam::LoadSlamSettings(slam::DefaultSlamSettingsPath(), {set});
+      } catch (const InputError&) {
+        break;  // no SLAM setting either
+      }
+      throw InputError(what + "; it is a SLAM setting: viqu run takes it as --set slam." + set);
+    }
+    throw;
+  }
+}
+
 int Run(const RunArgs& args, const std::string& command_line) {
-  const Scenario scenario = LoadScenario(args.scenario, args.sets);
+  const Scenario scenario = LoadScenarioOrSuggest(args);
   runner::RunOptions options = args.options;
   options.command_line = command_line;
   if (options.out_dir.empty()) options.out_dir = "runs/" + scenario.name;
@@ -51,6 +73,9 @@ int Dispatch(const CliArgs& args) {
   switch (args.command) {
     case Command::kHelp:
       std::fputs(UsageText(args.help_topic).c_str(), stdout);
+      return kExitOk;
+    case Command::kVersion:
+      std::printf("viqu %s (git %s)\n", VIQU_VERSION, VIQU_GIT_COMMIT);
       return kExitOk;
     case Command::kRun: return Run(args.run, args.command_line);
     case Command::kSlam: return RunSlamCommand(args.slam, args.command_line);
@@ -81,6 +106,9 @@ int Main(int argc, const char* const argv[]) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "viqu: %s\n", e.what());
     return kExitBadInput;
+  } catch (const Stopped& e) {
+    std::fprintf(stderr, "viqu: %s; nothing written\n", e.what());
+    return ExitCodeForSignal(e.signal());
   } catch (const RunError& e) {
     std::fprintf(stderr, "viqu: run failed: %s\n", e.what());
     return kExitRunFailed;

@@ -16,6 +16,7 @@
 #include "common/atomic_file.h"
 #include "common/child_process.h"
 #include "common/errors.h"
+#include "common/output_lock.h"
 #include "common/run_folder.h"
 #include "common/stop_signal.h"
 
@@ -154,6 +155,19 @@ int RunPoints(const SweepSpec& spec, const std::vector<SweepPoint>& points, cons
 
 }  // namespace
 
+namespace {
+
+// The sweep's seeds replace each scenario's own `seed`: said in the printed plan, since a
+// `seeds: 2` sweep of a scenario with seed 7 runs seeds 1 and 2, never 7.
+std::string SeedsLine(const SweepSpec& spec) {
+  std::string list;
+  for (size_t i = 0; i < spec.seeds.size() && i < 10; ++i) list += (i ? ", " : "") + std::to_string(spec.seeds[i]);
+  if (spec.seeds.size() > 10) list += ", ... (" + std::to_string(spec.seeds.size()) + " seeds)";
+  return "seeds " + list + " (each point runs with --set seed=N: the scenarios' own seed keys are not used)";
+}
+
+}  // namespace
+
 int RunSweepCommand(const SweepArgs& args, const std::string& viqu_exe) {
   const bool collect = !args.collect_dir.empty();
   const std::string dir = collect ? args.collect_dir
@@ -161,6 +175,10 @@ int RunSweepCommand(const SweepArgs& args, const std::string& viqu_exe) {
   const SweepSpec spec = LoadSweepSpec(collect ? dir + "/sweep.yaml" : args.sweep_file);
   const std::vector<SweepPoint> points = ExpandSweep(spec);
   std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("--out " + dir + " exists and is not a folder");
+  // One sweep process per folder (a run, a resume, an emit or a collect); the points' own runs
+  // lock their points/<id> folders, so a Slurm array's tasks do not hold this one.
+  const OutputLock lock(dir, std::string("viqu sweep ") + (collect ? "--collect " + dir : args.sweep_file + " --out " + dir));
   if (!collect) {
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("--out " + dir + " exists and is not a folder");
     if (fs::exists(dir + "/sweep.yaml", ec) && !args.resume && args.emit.empty()) {
@@ -202,9 +220,11 @@ int RunSweepCommand(const SweepArgs& args, const std::string& viqu_exe) {
       WriteFileAtomic(dir + "/sweep.sbatch", sbatch);
       std::printf("viqu sweep: %zu points: %s/manifest.txt and %s/sweep.sbatch (then viqu sweep --collect %s)\n",
                   points.size(), dir.c_str(), dir.c_str(), dir.c_str());
+      std::printf("viqu sweep: %s\n", SeedsLine(spec).c_str());
     } else {
       std::printf("viqu sweep: %zu points: %s/manifest.txt, one command per line (then viqu sweep --collect %s)\n",
                   points.size(), dir.c_str(), dir.c_str());
+      std::printf("viqu sweep: %s\n", SeedsLine(spec).c_str());
     }
     return 0;
   }
@@ -224,6 +244,7 @@ int RunSweepCommand(const SweepArgs& args, const std::string& viqu_exe) {
   if (!collect) {
     std::fprintf(stderr, "viqu sweep: %zu points (%zu complete already), %d at once, folder %s\n", points.size(), skipped,
                  args.jobs, dir.c_str());
+    std::fprintf(stderr, "viqu sweep: %s\n", SeedsLine(spec).c_str());
     stop = RunPoints(spec, points, todo, viqu_exe, dir, args.jobs, &outcomes);
   }
   const std::vector<std::string> best = WriteSweepTables(spec, points, outcomes, dir);

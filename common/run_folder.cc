@@ -141,6 +141,8 @@ RunFolderWriter::RunFolderWriter(const std::string& final_dir, bool force, const
     throw InputError("output folder " + final_ + " is the current folder or holds it; a run replaces its folder as a whole");
   }
   for (const std::string& input : inputs) RequireOutsideOutput(final_, input);
+  // One writer at a time: a second command into DIR stops here, before it touches anything.
+  lock_ = std::make_unique<OutputLock>(final_, command_line_.size() > 300 ? command_line_.substr(0, 300) + "..." : command_line_);
   if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !HoldsOnlyRunOutputs(dir) && !force) {
     throw InputError("output folder " + final_ +
                      " holds files that are no viqu run's outputs; a run replaces its folder as a whole: choose another "

@@ -1,6 +1,9 @@
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "common/output_lock.h"
 
 namespace viqu {
 
@@ -23,9 +26,10 @@ class RunFolderWriter {
  public:
   // Throws InputError (exit 2) when DIR is a file, the current folder or one above it, holds one
   // of `inputs` or lies inside one (RequireOutsideOutput; `force` does not lift either), is a
-  // non-empty folder that holds no viqu run (unless `force`), or when the partial folder cannot
-  // be created (e.g. an unwritable parent). Removes partial folders of earlier runs into DIR
-  // whose process is gone.
+  // non-empty folder that holds no viqu run (unless `force`), when another process writes DIR
+  // (OutputLock, held until this writer is destroyed; `force` does not lift it), or when the
+  // partial folder cannot be created (e.g. an unwritable parent). Removes partial folders of
+  // earlier runs into DIR whose process is gone.
   RunFolderWriter(const std::string& final_dir, bool force, const std::string& command_line,
                   const std::vector<std::string>& inputs = {});
   // Without Complete() or Interrupted() (an exception): removes the partial folder.
@@ -51,6 +55,7 @@ class RunFolderWriter {
   std::string partial_;
   std::string command_line_;
   bool done_ = false;
+  std::unique_ptr<OutputLock> lock_;  // DIR's, from the checks until destruction
 };
 
 // Throws InputError when `input` (a file or folder the run reads while it works) lies in

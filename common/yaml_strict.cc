@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "common/errors.h"
+#include "common/input_file.h"
 
 namespace viqu {
 namespace {
@@ -76,52 +78,59 @@ bool ParseIndex(const std::string& text, size_t* index) {
 // log, a device) from filling memory.
 constexpr size_t kMaxYamlFileBytes = size_t{16} << 20;
 
-YAML::Node ParseText(const std::string& text, const std::string& name) {
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    std::string where = name;
-    if (!e.mark.is_null()) {
-      where += ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1);
+std::string Where(const std::string& name, const YAML::Mark& mark) {
+  if (mark.is_null()) return name;
+  return name + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+}
+
+// viqu's files use no YAML tags: a tag (`!evil 2`, `!!str 2`) would be ignored by the readers or
+// change how a value reads, so it is refused where it stands. "?" (plain) and "!" (quoted) are
+// the non-specific tags every untagged node carries.
+// `marks`: name the node's line and column after `name` (false for a --set value).
+void RefuseTags(const YAML::Node& node, const std::string& name, bool marks = true) {
+  const std::string& tag = node.Tag();
+  if (!tag.empty() && tag != "?" && tag != "!") {
+    throw InputError((marks ? Where(name, node.Mark()) : name) + ": YAML tag '" + tag + "': viqu's files use no tags");
+  }
+  if (node.IsMap()) {
+    for (const auto& kv : node) {
+      RefuseTags(kv.first, name, marks);
+      RefuseTags(kv.second, name, marks);
     }
-    throw InputError(where + ": YAML syntax error: " + e.msg);
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) RefuseTags(item, name, marks);
+  }
+}
+
+// The one YAML document of `text` (an empty text: a null node). A second document ("---" and
+// more after it) would be ignored by every reader: it is refused, named by its first line.
+YAML::Node ParseText(const std::string& text, const std::string& name, bool tags_allowed) {
+  std::vector<YAML::Node> docs;
+  try {
+    docs = YAML::LoadAll(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(Where(name, e.mark) + ": YAML syntax error: " + e.msg);
   } catch (const YAML::Exception& e) {
     throw InputError(name + ": cannot parse YAML: " + e.what());
   }
+  if (docs.size() > 1) {
+    throw InputError(Where(name, docs[1].Mark()) + ": a second YAML document (after '---'): a viqu file holds one");
+  }
+  YAML::Node root = docs.empty() ? YAML::Node() : docs[0];
+  if (!tags_allowed) RefuseTags(root, name);
+  return root;
 }
 
 }  // namespace
 
 std::string ReadYamlFileText(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": file not found");
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a file");
-  // Devices and pipes (/dev/zero, /dev/stdin) are no configuration files: they may never end.
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
-  // Read in chunks up to one byte past the limit: a buffer of the whole limit, zero-filled for
-  // every file read, cost more than the parsing (16 MiB per scenario, settings or calibration).
-  std::string text;
-  char chunk[1 << 16];
-  while (text.size() <= kMaxYamlFileBytes) {
-    const size_t want = std::min(sizeof(chunk), kMaxYamlFileBytes + 1 - text.size());
-    in.read(chunk, static_cast<std::streamsize>(want));
-    if (in.bad()) throw InputError(path + ": read error");
-    text.append(chunk, static_cast<size_t>(in.gcount()));
-    if (in.eof() || in.gcount() == 0) break;
-  }
-  if (text.size() > kMaxYamlFileBytes) {
-    throw InputError(path + ": larger than " + std::to_string(kMaxYamlFileBytes >> 20) +
-                     " MiB; not a scenario, settings or calibration file");
-  }
-  return text;
+  return ReadInputFile(path, kMaxYamlFileBytes, "scenario, settings or calibration file");
 }
 
-YAML::Node LoadYamlFile(const std::string& path) { return ParseText(ReadYamlFileText(path), path); }
+YAML::Node LoadYamlFile(const std::string& path) { return ParseText(ReadYamlFileText(path), path, false); }
 
 YAML::Node LoadYamlText(const std::string& text, const std::string& name) {
-  return ParseText(text, name);
+  return ParseText(text, name, true);
 }
 
 void ApplyYamlOverride(YAML::Node* root, const std::string& assignment, YamlSource* src,
@@ -140,6 +149,7 @@ void ApplyYamlOverride(YAML::Node* root, const std::string& assignment, YamlSour
   } catch (const YAML::Exception& e) {
     throw InputError(where + ": the value is not valid YAML: " + e.msg);
   }
+  RefuseTags(value, where, false);
   if (!root->IsDefined() || root->IsNull()) *root = YAML::Node(YAML::NodeType::Map);
 
   // Walk down with reset() (plain assignment between nodes would overwrite the node's content).

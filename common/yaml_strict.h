@@ -22,15 +22,18 @@
 
 namespace viqu {
 
-// Reads and parses a YAML file. Missing or unreadable file: InputError naming it; syntax
-// error: InputError "FILE:LINE:COL: YAML syntax error: ...". An empty file gives a null node.
+// Reads and parses a YAML file of viqu's own (scenario, settings, sweep). Missing or unreadable
+// file: InputError naming it; syntax error: InputError "FILE:LINE:COL: YAML syntax error: ...";
+// a second document ("---") or a tag ("!x", "!!str") is refused at FILE:LINE:COL. An empty file
+// gives a null node.
 YAML::Node LoadYamlFile(const std::string& path);
 
 // The text of a YAML file: a regular file (not a device or pipe) of at most 16 MiB; InputError
 // naming the file otherwise. LoadYamlFile parses it; readers of YAML dialects adjust it first.
 std::string ReadYamlFileText(const std::string& path);
 
-// Parses YAML text; `name` stands for the file in messages.
+// Parses YAML text of another program's dialect (OpenCV's, with tags such as !!opencv-matrix);
+// `name` stands for the file in messages. A second document is refused as above.
 YAML::Node LoadYamlText(const std::string& text, const std::string& name);
 
 // Applies one override "key.path=value" to `root` (a map): the value is parsed as YAML (so

@@ -8,6 +8,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "common/errors.h"
+#include "common/input_file.h"
 
 namespace viqu::kin {
 namespace {
@@ -65,11 +66,9 @@ void CheckPlanarLeg(const LegChain& c, const std::string& leg, const std::string
 }  // namespace
 
 LegKinematics LegKinematics::FromUrdfFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read URDF file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return FromUrdfString(ss.str(), path);
+  // A URDF of a robot is a few KiB to a few hundred (meshes are other files).
+  constexpr uintmax_t kMaxUrdfFileBytes = uintmax_t{16} << 20;
+  return FromUrdfString(ReadInputFile(path, kMaxUrdfFileBytes, "URDF file"), path);
 }
 
 LegKinematics LegKinematics::FromUrdfString(const std::string& xml, const std::string& what) {

@@ -6,17 +6,16 @@
 #include <sstream>
 
 #include "common/errors.h"
+#include "common/input_file.h"
 
 namespace viqu::sim {
 namespace {
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read MJCF file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+// The largest MJCF piece read (bytes): the shipped worlds are a few KiB; meshes and textures are
+// separate files that MuJoCo reads.
+constexpr uintmax_t kMaxMjcfFileBytes = uintmax_t{16} << 20;
+
+std::string ReadText(const std::string& path) { return ReadInputFile(path, kMaxMjcfFileBytes, "MJCF file"); }
 
 std::string Folder(const std::string& path) {
   const auto slash = path.find_last_of('/');

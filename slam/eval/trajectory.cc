@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/input_file.h"
 
 namespace viqu::eval {
 
@@ -20,19 +21,19 @@ namespace {
 // near 1e154 overflow a double, so far larger ones would give an infinite error.
 constexpr long double kMaxStampS = 9.2e9L;
 constexpr double kMaxPositionM = 1e6;
+// The largest trajectory file read (bytes): a pose line is under 120 bytes, so this holds ten
+// hours at 1 kHz; the bound keeps a wrong path from filling memory.
+constexpr uintmax_t kMaxTrajectoryFileBytes = uintmax_t{4} << 30;
 
 }  // namespace
 
 Trajectory ReadTumTrajectory(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a trajectory file");
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read trajectory file");
+  InputLines in(path, kMaxTrajectoryFileBytes, "trajectory file");
   Trajectory out;
   std::string line;
   int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
+  while (in.Next(&line)) {
+    line_no = in.line();
     const auto first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
     // Separated by spaces, tabs or commas, as TUM's associate.py reads them.

@@ -1,7 +1,5 @@
 #include "slam/io/text_table_reader.h"
 
-#include <filesystem>
-
 #include "common/errors.h"
 
 namespace viqu::io {
@@ -18,17 +16,13 @@ std::string Trim(const std::string& s) {
 
 TextTableReader::TextTableReader(std::string path, char separator)
     : path_(std::move(path)), separator_(separator) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path_, ec)) throw InputError(path_ + ": file not found");
-  if (std::filesystem::is_directory(path_, ec)) throw InputError(path_ + ": is a directory, not a file");
-  in_.open(path_, std::ios::binary);
-  if (!in_) throw InputError(path_ + ": cannot open");
+  in_ = std::make_unique<InputLines>(path_, kMaxTableFileBytes, "table file");
 }
 
 bool TextTableReader::Next(std::vector<std::string>* fields) {
   std::string text;
-  while (std::getline(in_, text)) {
-    ++line_;
+  while (in_->Next(&text)) {
+    line_ = in_->line();
     if (!text.empty() && text.back() == '\r') text.pop_back();
     const std::string trimmed = Trim(text);
     if (trimmed.empty() || trimmed[0] == '#') continue;
@@ -52,7 +46,6 @@ bool TextTableReader::Next(std::vector<std::string>* fields) {
     }
     return true;
   }
-  if (in_.bad()) throw InputError(path_ + ": read error");
   return false;
 }
 
