@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <optional>
 #include <algorithm>
+#include <set>
 #include <thread>
 #include <utility>
 
@@ -32,7 +33,7 @@ const char* const kRunUsage =
     "                     outputs, slower: for comparison and profiling)\n";
 const char* const kSlamUsage =
     "viqu slam DATASET_DIR [--format viqu|euroc|tum] [--config FILE] [--camera FILE] [--out DIR] [--force]\n"
-    "          [--masks DIR] [--skip-bad-frames] [--set key.path=value ...]\n"
+    "          [--masks DIR] [--skip-bad-frames [N]] [--set key.path=value ...]\n"
     "    replay a recorded run folder or a public dataset through SLAM\n"
     "    --format F       viqu (a run folder written with --record; default), euroc (EuRoC MAV,\n"
     "                     rectified on reading), tum (TUM RGB-D; tracks in rgbd mode)\n"
@@ -44,13 +45,23 @@ const char* const kSlamUsage =
     "    --force          let --out replace a non-empty folder that holds no viqu run\n"
     "    --masks DIR      per-frame 16-bit instance PNGs named like the images, plus\n"
     "                     DIR/instances.csv (id,category,name); see docs/MASKS.md\n"
-    "    --skip-bad-frames  skip a lone frame whose images cannot be read (warned, counted in\n"
-    "                     metrics.json camera.frames_skipped) instead of stopping with exit 2\n"
-    "    --set K=V        override a SLAM settings key (repeatable), e.g. --set tracking.min_inliers=40\n";
+    "    --skip-bad-frames [N]  skip up to N (default 1) lone frames whose images cannot be read\n"
+    "                     (warned, counted in metrics.json camera.frames_skipped) instead of stopping\n"
+    "                     with exit 2; two unreadable frames in a row, or the first, still stop it\n"
+    "    --set K=V        override a SLAM settings key (repeatable), e.g. --set tracking.min_inliers=40;\n"
+    "                     the scenario form slam.K=V (as viqu run --set takes it) is read the same\n";
 const char* const kEvalUsage =
     "viqu eval EST.txt GT.txt [--json] [--sim3] [--delta N | --delta-m D]\n"
-    "    ATE/RPE of two TUM-format trajectories (SE(3) alignment unless --sim3;\n"
-    "    RPE over N associated frames, default 1, or over D metres of path)\n";
+    "    ATE and RPE of an estimated trajectory against the ground truth, as TUM's evaluate_ate.py and\n"
+    "    evaluate_rpe.py compute them. Both files in TUM format: one pose a line, 't tx ty tz qx qy qz qw'\n"
+    "    (seconds, metres, unit quaternion; spaces, tabs or commas between; '#' lines skipped). Poses are\n"
+    "    associated by time within 0.02 s; the estimate is aligned to the truth by Umeyama's method.\n"
+    "    --json           print the ate.* and rpe.* keys of metrics.json as one JSON object\n"
+    "    --sim3           align with a similarity (a scale too; printed): for monocular estimates\n"
+    "    --delta N        RPE over pairs N associated poses apart (default 1)\n"
+    "    --delta-m D      RPE over pairs D metres of ground-truth path apart\n"
+    "    exit 2 naming FILE:LINE for a malformed, non-finite, repeated or backward pose, an empty or\n"
+    "    unreadable file, fewer than 3 associated poses, or an RPE distance that gives no pair\n";
 const char* const kSweepUsage =
     "viqu sweep SWEEP.yaml [--jobs N] [--out DIR] [--resume] [--emit slurm|list]\n"
     "viqu sweep --collect DIR\n"
@@ -92,7 +103,9 @@ class ArgCursor {
       : argc_(argc), argv_(argv), i_(first), command_(std::move(command)) {}
 
   bool Done() const { return i_ >= argc_; }
-  // The next argument; for "--name=value" splits off the value (see TakeValue).
+  // The next argument; for "--name=value" splits off the value (see TakeValue). An option other
+  // than --set given a second time is a usage error: which of the two was meant is not for the
+  // program to guess (`--out A --out B` took B silently).
   std::string Next() {
     std::string arg = argv_[i_++];
     pending_value_.clear();
@@ -104,8 +117,27 @@ class ArgCursor {
         has_pending_ = true;
         arg = arg.substr(0, eq);
       }
+      if (arg != "--set" && !seen_.insert(arg).second) {
+        throw UsageError(command_ + ": option " + arg + " given twice");
+      }
     }
     return arg;
+  }
+  // With "--name=value" that value; else the next argument when it is a whole number (taken);
+  // else nothing (the option stands alone).
+  std::optional<std::string> TakeOptionalNumber() {
+    if (has_pending_) {
+      has_pending_ = false;
+      return pending_value_;
+    }
+    if (i_ < argc_) {
+      const std::string next = argv_[i_];
+      if (!next.empty() && next.find_first_not_of("0123456789") == std::string::npos) {
+        ++i_;
+        return next;
+      }
+    }
+    return std::nullopt;
   }
   // The value of the option just read by Next().
   std::string TakeValue(const std::string& option) {
@@ -128,6 +160,7 @@ class ArgCursor {
   std::string command_;        // subcommand, for messages
   std::string pending_value_;  // value given as --name=value
   bool has_pending_ = false;
+  std::set<std::string> seen_; // options read so far
 };
 
 bool IsOption(const std::string& arg) { return arg.size() > 1 && arg[0] == '-'; }
@@ -216,8 +249,17 @@ SlamArgs ParseSlam(ArgCursor* c) {
     } else if (arg == "--masks") {
       a.masks_dir = c->TakeValue(arg);
     } else if (arg == "--skip-bad-frames") {
-      c->NoValue(arg);
-      a.skip_bad_frames = true;
+      const std::optional<std::string> v = c->TakeOptionalNumber();
+      a.skip_bad_frames = 1;
+      if (v) {
+        char* end = nullptr;
+        errno = 0;
+        const long n = std::strtol(v->c_str(), &end, 10);
+        if (v->empty() || *end != '\0' || errno == ERANGE || n < 1 || n > 1'000'000) {
+          throw UsageError("slam: --skip-bad-frames expects a whole number of frames from 1 to 1000000, got '" + *v + "'");
+        }
+        a.skip_bad_frames = static_cast<int>(n);
+      }
     } else if (arg == "--set") {
       a.sets.push_back(c->TakeValue(arg));
       CheckSet("slam", a.sets.back());
@@ -381,6 +423,10 @@ CliArgs ParseCommandLine(int argc, const char* const argv[]) {
   const std::string command = argv[1];
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (i == 1 && (arg == "--version" || arg == "version")) {
+      args.command = Command::kVersion;
+      return args;
+    }
     if (arg == "-h" || arg == "--help") {
       args.command = Command::kHelp;
       const bool known = command == "run" || command == "slam" || command == "eval" ||
@@ -444,7 +490,10 @@ std::string UsageText(const std::string& topic) {
   if (!topic.empty()) return "";
   return std::string("usage: viqu COMMAND [ARGS]   (viqu COMMAND --help for details)\n\n") + kRunUsage +
          kSlamUsage + kEvalUsage + kSweepUsage + kReportUsage + kViewUsage +
-         "\nexit codes: 0 ok, 1 run failed, 2 bad input or usage\n";
+         "viqu --version\n    the version and the git commit it was built from\n"
+         "\nexit codes: 0 ok, 1 run failed (e.g. the robot fell), 2 bad input or usage (the message names the\n"
+         "file, and line:column for YAML), 130 / 143 stopped by SIGINT / SIGTERM (the run folder is\n"
+         "complete so far and marked run_incomplete.json)\n";
 }
 
 }  // namespace viqu::app

@@ -23,7 +23,8 @@ struct SlamArgs {
   bool force = false;             // --force: --out may replace a non-empty folder holding no run
   std::string camera;             // --camera: calibration file; empty = the dataset's own
   std::string masks_dir;          // instance masks (docs/MASKS.md); empty when --masks was not given
-  bool skip_bad_frames = false;   // --skip-bad-frames: a lone unreadable frame is skipped, not exit 2
+  int skip_bad_frames = 0;        // --skip-bad-frames [N]: up to N lone unreadable frames are skipped
+                                  // (N 1 when not given), not exit 2; 0 = none
   std::vector<std::string> sets;  // "key.path=value" SLAM settings overrides, in command-line order
 };
 
@@ -65,7 +66,7 @@ struct ViewArgs {
   std::string screenshot;         // PNG of the window when the viewer ends; empty = none
 };
 
-enum class Command { kHelp, kRun, kSlam, kEval, kSweep, kReport, kView };
+enum class Command { kHelp, kVersion, kRun, kSlam, kEval, kSweep, kReport, kView };
 
 // The parsed command line; only the member of `command` is filled in.
 struct CliArgs {

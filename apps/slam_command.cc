@@ -18,6 +18,7 @@
 #include "slam/features/orb_extractor.h"
 #include "slam/fusion/gyro_motion_prior.h"
 #include "slam/fusion/visual_leg_fusion.h"
+#include "slam/io/object_truth_csv.h"
 #include "slam/io/open_dataset.h"
 #include "slam/io/proprioception_reader.h"
 #include "slam/lo/leg_odometry.h"
@@ -91,9 +92,17 @@ class ProprioceptionFeed {
 int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
   const auto wall_start = std::chrono::steady_clock::now();
   const io::DatasetFormat format = io::ParseDatasetFormat(args.format);
-  // Settings first: a mistyped --set is reported before the dataset is scanned.
+  // Settings first: a mistyped --set is reported before the dataset is scanned. A key in the
+  // scenario's form (slam.dynamic.method, as viqu run --set takes it) is the same setting; messages
+  // name it as typed.
+  std::vector<std::string> sets, origins;
+  for (const std::string& set : args.sets) {
+    const bool scenario_form = set.rfind("slam.", 0) == 0;
+    sets.push_back(scenario_form ? set.substr(5) : set);
+    origins.push_back(scenario_form ? "--set " + set : "");
+  }
   slam::SlamSettings settings =
-      slam::LoadSlamSettings(args.config.empty() ? slam::DefaultSlamSettingsPath() : args.config, args.sets);
+      slam::LoadSlamSettings(args.config.empty() ? slam::DefaultSlamSettingsPath() : args.config, sets, origins);
   std::unique_ptr<io::DatasetReader> reader = io::OpenDataset(args.dataset_dir, format, args.masks_dir, args.camera);
   reader->AllowSkippingBadFrames(args.skip_bad_frames);
   const PinholeIntrinsics& k = reader->intrinsics();
@@ -151,6 +160,11 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
     fusion = std::make_unique<slam::VisualLegFusion>(fused_lo.get(), proprio->T_body_cam0, settings.lo.fusion_min_inliers);
     feed = std::make_unique<ProprioceptionFeed>(*proprio, settings.lo.contact, fused_lo.get());
   }
+  // The objects' truth a viqu recording kept (objects0): the replay's dynamic-object decisions
+  // are scored as the live run's were.
+  std::optional<io::ObjectTruthStream> objects;
+  if (format == io::DatasetFormat::kViqu) objects = io::ReadViquObjectTruth(args.dataset_dir);
+  const std::vector<ObjectTruth> no_objects;
   std::unique_ptr<runner::SlamRun> run;
   StereoFrame frame;
   int64_t first_t = 0, last_t = 0;
@@ -170,7 +184,12 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
     while (gyro && next_imu < imu->samples.size() && imu->samples[next_imu].t_ns <= frame.t_ns) {
       gyro->AddImu(imu->samples[next_imu++]);
     }
-    const slam::TrackResult r = run->Track(frame);
+    const std::vector<ObjectTruth>* truth = nullptr;
+    if (objects) {
+      const auto at = objects->find(frame.t_ns);
+      truth = at == objects->end() ? &no_objects : &at->second;
+    }
+    const slam::TrackResult r = run->Track(frame, truth);
     last_t = frame.t_ns;
     ++frames;
     if (r.status == slam::TrackStatus::kLost && frames > 1) {
@@ -217,8 +236,10 @@ int RunSlamCommand(const SlamArgs& args, const std::string& command_line) {
     std::fprintf(stderr, "viqu: note: %d unreadable frame(s) skipped (--skip-bad-frames; metrics.json camera.frames_skipped)\n",
                  reader->frames_skipped());
   }
-  std::printf("viqu slam %s (%s): %d frames in %.1f s\n", args.dataset_dir.c_str(), io::DatasetFormatName(format),
-              frames, wall);
+  const std::string skipped =
+      reader->frames_skipped() > 0 ? ", " + std::to_string(reader->frames_skipped()) + " unreadable skipped" : "";
+  std::printf("viqu slam %s (%s): %d frames%s in %.1f s\n", args.dataset_dir.c_str(), io::DatasetFormatName(format),
+              frames, skipped.c_str(), wall);
   std::printf("SLAM: %s\n", runner::SlamSummaryLine(summary).c_str());
   std::printf("outputs: %s\n", OutputsLine(folder.final_path()).c_str());
   return 0;

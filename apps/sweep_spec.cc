@@ -108,6 +108,10 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   }
 
   const YAML::Node metrics = top.List("metrics");
+  // `metrics: []` would run every point and tabulate nothing; leaving the key out gives the defaults.
+  if (top.Has("metrics") && metrics.size() == 0) {
+    src.Fail("metrics", top.Get("metrics"), "key 'metrics' lists no metric (leave it out for ate.rmse_m and tracking.lost_frames)");
+  }
   std::set<std::string> metric_names;
   for (size_t i = 0; i < metrics.size(); ++i) {
     const std::string m = ReadYamlString(src, metrics[i], "metrics." + std::to_string(i));

@@ -107,13 +107,14 @@ void DynamicScore::Add(int64_t t_ns, const std::vector<slam::ObjectReport>& repo
   }
 }
 
-void DynamicScore::Finish(JsonWriter* json) {
+void DynamicScore::Finish(JsonWriter* json, bool judged) {
   csv_->Commit();
   json->Set("dynamic.object_frames", object_frames_);
   json->Set("dynamic.decided_dynamic_share", Share(decided_frames_, object_frames_));
   if (!have_truth_) return;
-  json->Set("dynamic.precision", Share(tp_, tp_ + fp_));
-  json->Set("dynamic.recall", Share(tp_, tp_ + fn_));
+  constexpr double kNotJudged = std::numeric_limits<double>::quiet_NaN();  // written as null
+  json->Set("dynamic.precision", judged ? Share(tp_, tp_ + fp_) : kNotJudged);
+  json->Set("dynamic.recall", judged ? Share(tp_, tp_ + fn_) : kNotJudged);
   json->Set("dynamic.scored_object_frames", tp_ + fp_ + fn_ + tn_);
   json->Set("dynamic.kept_on_static_movables", Share(static_kept_, static_features_));
   json->Set("dynamic.dropped_on_moving", Share(moving_dropped_, moving_features_));

@@ -1,7 +1,8 @@
 #pragma once
 // Scores the dynamic-object stage against the simulator's truth: dynamic.csv (one row per object
 // and frame) and the dynamic.* keys of metrics.json (DESIGN.md). Offline replays have no truth:
-// their rows leave the truth columns empty and the metrics hold only what needs none.
+// their rows leave the truth columns empty and the metrics hold only what needs none, unless the
+// recording kept the truth (objects0, slam/io/object_truth_csv.h).
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -12,17 +13,10 @@
 #include "common/json_writer.h"
 #include "sim/obstacles.h"
 #include "slam/core/dynamic_objects.h"
+#include "slam/measurements/object_truth.h"
 #include "slam/measurements/stereo_frame.h"
 
 namespace viqu::runner {
-
-// What the simulator knows about one object in one frame.
-struct ObjectTruth {
-  std::string name;
-  Category category = Category::kBackground;
-  int visible_px = 0;                // pixels in the ideal (detector-free) instance image
-  bool moving = false;               // moved more than kTruthMoveM within the last kTruthWindowS
-};
 
 // A person pausing for a second between strides is still a moving object: truth counts an object
 // as moving when it moved more than kTruthMoveM over the last kTruthWindowS.
@@ -43,8 +37,10 @@ class DynamicScore {
   // One frame: the SLAM system's object reports and, live, the truth (null offline).
   void Add(int64_t t_ns, const std::vector<slam::ObjectReport>& reports, const std::vector<ObjectTruth>* truth);
 
-  // Commits dynamic.csv and adds the dynamic.* keys to `json`.
-  void Finish(JsonWriter* json);
+  // Commits dynamic.csv and adds the dynamic.* keys to `json`. `judged`: whether a dynamic
+  // stage judged objects at all (false for method none and mode visual: precision and recall are
+  // then null, not 0: nothing was judged, so nothing was missed).
+  void Finish(JsonWriter* json, bool judged = true);
 
  private:
   struct ObjectTimeline {

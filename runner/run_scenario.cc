@@ -326,7 +326,8 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
       // The simulator's truth about the obstacles, from the ideal instance image, before the
       // detector model changes it.
       std::vector<ObjectTruth> truth;
-      if (slam) truth = ObjectTruthOf(frame, world.obstacles(), t_ns * 1e-9);
+      if (slam || recorder) truth = ObjectTruthOf(frame, world.obstacles(), t_ns * 1e-9);
+      if (recorder) recorder->AddObjectTruth(t_ns, truth);
       if (!frame.left_instance_id.empty()) sensors.segmentation.Apply(&frame);
       // Depth as a depth camera delivers it: quantised to TUM's 1/5000 m, so that a recorded
       // TUM dataset replays exactly as the live run saw it.

@@ -18,6 +18,7 @@ ScenarioSettingsInputs SettingsInputsOf(const Scenario& s) {
   in.origins.insert(in.origins.end(), s.slam.settings_override_origins.begin(), s.slam.settings_override_origins.end());
   in.width = s.sensors.camera.width;
   in.height = s.sensors.camera.height;
+  in.size_where = s.sensors.camera.size_where;
   return in;
 }
 
@@ -30,7 +31,17 @@ std::string ScenarioSettingsInputs::Key() const {
 slam::SlamSettings LoadScenarioSettings(const ScenarioSettingsInputs& in) {
   slam::SlamSettings settings = slam::LoadSlamSettings(in.path, in.overrides, in.origins);
   const std::string pyramid = slam::PyramidProblem(settings.orb.scale_factor, settings.orb.num_levels, in.width, in.height);
-  if (!pyramid.empty()) throw InputError(settings.pyramid_where + ": " + pyramid);
+  if (pyramid.empty()) return settings;
+  // The value the user chose is blamed: the scenario's image size, unless the pyramid's keys
+  // were set elsewhere than in the default settings (a 16x16 camera was refused naming
+  // default.yaml's orb.num_levels line).
+  const bool pyramid_default = settings.pyramid_where.rfind(slam::DefaultSlamSettingsPath(), 0) == 0;
+  if (pyramid_default && !in.size_where.empty()) {
+    throw InputError(in.size_where + ": the " + std::to_string(in.width) + "x" + std::to_string(in.height) +
+                     " camera image is too small for the SLAM settings' ORB pyramid (" + settings.pyramid_where + "): " +
+                     pyramid);
+  }
+  throw InputError(settings.pyramid_where + ": " + pyramid);
   return settings;
 }
 

@@ -17,6 +17,7 @@ struct ScenarioSettingsInputs {
   std::string path;
   std::vector<std::string> overrides, origins;
   int width = 0, height = 0;
+  std::string size_where;  // where the scenario set the image size (empty: its defaults)
   // The inputs as one string: equal for two scenarios exactly when their settings are equal
   // (origins aside), so a caller can load each distinct one once.
   std::string Key() const;

@@ -32,7 +32,9 @@ std::vector<std::string> ScenarioWarnings(const Scenario& s, const std::string& 
                   end + ": it has no effect");
     }
   }
-  if (s.robot.command.follow == "estimate" && s.robot.command.waypoints.empty()) {
+  if (s.robot.command.waypoints.empty() && s.robot.command.velocity.empty()) {
+    w.push_back("robot.command has no waypoints and no velocity schedule: the robot stands still for the whole run");
+  } else if (s.robot.command.follow == "estimate" && s.robot.command.waypoints.empty()) {
     w.push_back("robot.command.follow: estimate steers waypoints; the velocity schedule is open loop, so it has no "
                 "effect");
   }

@@ -4,6 +4,7 @@
 
 #include "runner/run_metrics.h"
 #include "common/errors.h"
+#include "slam/core/dynamic_objects.h"
 #include "slam/eval/trajectory_error.h"
 
 namespace viqu::runner {
@@ -37,6 +38,13 @@ slam::TrackResult SlamRun::Track(const StereoFrame& frame, const std::vector<Obj
     prior_err_mm_.push_back(r.prior_err_mm);
   }
   if (r.external_prior) ++external_priors_;
+  // A pose measured by something: the map (tracked, relocalised, a new segment), the motion
+  // prior of leg odometry + IMU or the gyro, or the last frame's own points (a carry that held).
+  // A lost frame with none of these repeats a guess.
+  const int carry_need = system_.settings().tracking.lost_carry_min_inliers;
+  if (r.status != slam::TrackStatus::kLost || r.external_prior || (carry_need > 0 && r.carry_inliers >= carry_need)) {
+    ++estimated_frames_;
+  }
   char line[224];
   std::snprintf(line, sizeof line, "%s,%s,%d,%d,%d,%d,%.2f,%d,%.2f,%s,%s,%.2f,%d,%d\n", sim::FormatSeconds(r.t_ns).c_str(),
                 slam::TrackStatusName(r.status), r.features, r.stereo_points, r.inliers, r.keyframe ? 1 : 0, r.track_ms,
@@ -51,7 +59,7 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
   system_.Finish();
   writer_.Close();
   log_->Commit();
-  dynamic_.Finish(json);
+  dynamic_.Finish(json, slam::DynamicMethodOf(system_.settings()) != slam::DynamicMethod::kNone);
   const slam::SlamStats st = system_.Stats();
   SlamSummary s;
   s.frames = st.frames;
@@ -102,6 +110,15 @@ SlamSummary SlamRun::Finish(const eval::Trajectory& gt, double path_length_m, Js
     json->SetNumbers("lo.fused_gyro_bias_radps", {b.x(), b.y(), b.z()});
   }
   if (gt.empty()) return s;
+  // A trajectory that no measurement made (a camera dark throughout in `visual`: the start pose
+  // repeated) has no ATE to give: its figure would describe the robot's path, not the estimator.
+  if (estimated_frames_ < kMinEstimatedFrames) {
+    s.ate_unavailable = std::to_string(estimated_frames_) + " of " + std::to_string(st.frames) +
+                        " frames have a pose measured by the map, odometry or the last frame's points (" +
+                        std::to_string(kMinEstimatedFrames) + " needed); the rest repeat a guess";
+    json->Set("ate.unavailable", s.ate_unavailable);
+    return s;
+  }
   // The trajectory is kept whatever happens here; the metrics say why an ATE is missing.
   try {
     const eval::AteResult ate = eval::ComputeAte(est_, gt);

@@ -69,7 +69,11 @@ class SlamRun {
   std::vector<double> prior_err_deg_, prior_err_mm_;
   std::vector<double> search_px_;  // the first search window of each frame (px)
   int external_priors_ = 0;
+  int estimated_frames_ = 0;  // frames whose pose a measurement gave (not a repeated guess)
 };
+
+// An ATE needs this many frames whose pose a measurement gave (an SE(3) alignment needs 3 poses).
+constexpr int kMinEstimatedFrames = 3;
 
 // "ATE 0.0123 m RMSE (0.41% of 3.00 m), 0 lost of 400 frames, 35 keyframes, tracking 18.2 ms median"
 std::string SlamSummaryLine(const SlamSummary& s);

@@ -50,6 +50,8 @@ struct RobotConfig {                 // robot
 struct CameraConfig {                // sensors.camera
   double rate_hz = 20;               // (Hz)
   int width = 640, height = 480;     // (px)
+  std::string size_where;            // where the smaller side's width/height was written (FILE:LINE:COL or
+                                     // "--set ..."), for messages; empty: the defaults
   double fovy_deg = 70;              // vertical field of view (deg)
   double baseline_m = 0.04;          // stereo baseline (m)
   double noise_std = 2.0;            // Gaussian pixel noise, std in 8-bit grey levels

@@ -139,6 +139,14 @@ void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
   cam.Number("rate_hz", &s->camera.rate_hz, rate);
   cam.Integer("width", &s->camera.width, NumberRange::Closed(16, 4096));
   cam.Integer("height", &s->camera.height, NumberRange::Closed(16, 4096));
+  // The side that limits the SLAM settings' image pyramid, where the user wrote it.
+  const char* smaller = s->camera.height <= s->camera.width ? "height" : "width";
+  const char* other = smaller[0] == 'h' ? "width" : "height";
+  if (cam.Has(smaller)) {
+    s->camera.size_where = cam.Where(smaller) + " (sensors.camera." + smaller + ")";
+  } else if (cam.Has(other)) {
+    s->camera.size_where = cam.Where(other) + " (sensors.camera." + other + ")";
+  }
   // Up to 170 deg: beyond it MuJoCo's single-precision frustum no longer matches the pinhole
   // model (175 deg fails the renderer's check, 170 passes; measured).
   cam.Number("fovy_deg", &s->camera.fovy_deg, NumberRange::OpenClosed(0, 170));

@@ -95,7 +95,10 @@ EurocRecorder::EurocRecorder(const std::string& dataset_dir, const EurocRig& rig
   MakeDirs(mav0_ + "/cam0/data");
   MakeDirs(mav0_ + "/cam1/data");
   if (rig_.camera.depth) MakeDirs(mav0_ + "/depth0/data");
-  if (rig_.camera.segmentation) MakeDirs(mav0_ + "/seg0/data");
+  if (rig_.camera.segmentation) {
+    MakeDirs(mav0_ + "/seg0/data");
+    MakeDirs(mav0_ + "/objects0");
+  }
   MakeDirs(mav0_ + "/imu0");
   MakeDirs(mav0_ + "/joints0");
   MakeDirs(mav0_ + "/contact0");
@@ -109,6 +112,7 @@ EurocRecorder::EurocRecorder(const std::string& dataset_dir, const EurocRig& rig
     seg0_ = OpenCsv("seg0", image_header);
     seg0_frames_.file = std::make_unique<AtomicOutputFile>(mav0_ + "/seg0/frame_instances.csv");
     seg0_frames_.file->Write("#timestamp [ns],id,category,name\n");
+    objects0_ = OpenCsv("objects0", "#timestamp [ns],visible_px,truly_moving,category,name\n");
   }
   imu0_ = OpenCsv("imu0",
                   "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
@@ -138,7 +142,7 @@ EurocRecorder::~EurocRecorder() {
   if (finished_) return;
   writer_.reset();  // stop writing images into the folder that is about to go
   // Close (and delete) the temporary CSV files first, then the whole partial folder.
-  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &imu0_, &joints0_, &contact0_, &gt0_}) s->file.reset();
+  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &objects0_, &imu0_, &joints0_, &contact0_, &gt0_}) s->file.reset();
   std::error_code ec;
   fs::remove_all(partial_dir_, ec);
 }
@@ -195,6 +199,17 @@ void EurocRecorder::AddFrame(const StereoFrame& frame, const cv::Mat& depth_step
     }
     seg0_frames_.file->Write(rows);
   }
+}
+
+void EurocRecorder::AddObjectTruth(int64_t t_ns, const std::vector<ObjectTruth>& objects) {
+  if (!objects0_.file) return;
+  CheckStamp(&objects0_, t_ns, "object truth");
+  std::string rows;
+  for (const ObjectTruth& o : objects) {
+    rows += RowStamp(t_ns) + "," + std::to_string(o.visible_px) + "," + (o.moving ? "1" : "0") + "," +
+            CategoryName(o.category) + "," + o.name + "\n";
+  }
+  objects0_.file->Write(rows);
 }
 
 void EurocRecorder::AddImu(const ImuSample& s) {
@@ -303,7 +318,7 @@ void EurocRecorder::Finish() {
   if (finished_) return;
   writer_->Drain();
   WriteSensorFiles();
-  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &imu0_, &joints0_, &contact0_, &gt0_}) {
+  for (CsvStream* s : {&cam0_, &cam1_, &depth0_, &seg0_, &seg0_frames_, &objects0_, &imu0_, &joints0_, &contact0_, &gt0_}) {
     if (s->file) s->file->Commit();
   }
   // Swap the finished folder into place; an old dataset under the final name is replaced.

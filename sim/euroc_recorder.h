@@ -13,6 +13,7 @@
 #include "slam/measurements/ground_truth_pose.h"
 #include "slam/measurements/imu_sample.h"
 #include "slam/measurements/joint_state.h"
+#include "slam/measurements/object_truth.h"
 #include "slam/measurements/stereo_frame.h"
 
 namespace viqu::sim {
@@ -37,6 +38,9 @@ struct EurocRig {
 //                                                                  (sensor.yaml depth_unit_m 0.0002)
 //   DATASET/mav0/seg0/{data/<t_ns>.png, data.csv, sensor.yaml, instances.csv,
 //                      frame_instances.csv}                        left instance ids
+//   DATASET/mav0/objects0/data.csv                                 the movable objects' truth per frame
+//                                                                  (with seg0): scores a replay's
+//                                                                  dynamic-object decisions
 //   DATASET/mav0/imu0/{data.csv, sensor.yaml}
 //   DATASET/mav0/joints0/{data.csv, sensor.yaml}                   encoders and foot contacts (truth)
 //   DATASET/mav0/contact0/data.csv                                 foot touch sensors and the
@@ -53,11 +57,15 @@ struct EurocRig {
 // included, in the frame's order), so that a replay gives the dynamic-object stage exactly the
 // instance list that the live run gave it; a frame whose list was empty has no row.
 //
+// objects0/data.csv ("timestamp [ns],visible_px,truly_moving,category,name") has, per frame, one
+// row per movable object visible in the ideal instance image (before the detector model): its
+// pixels there and whether it truly moved (runner/dynamic_score.h); a frame with none has no row.
+//
 // Everything is written under DATASET.partial/ (CSV files through temporary names) and renamed
 // onto DATASET by Finish(); destroyed without Finish(), the recorder removes DATASET.partial.
 // Timestamps of each stream must increase. Errors throw RunError. Threads: AddFrame shares no
 // state with AddImu, AddJoints, AddContact and AddGroundTruth, so it may be called on another
-// thread than they are (each of the two groups from one thread at a time); Finish after both. IMU and encoder values are
+// thread than they are, nor with AddObjectTruth (each of the two groups from one thread at a time); Finish after both. IMU and encoder values are
 // written with as many digits as they need to read back exactly (at most 17), so that a replay
 // gets the very doubles of the run.
 class EurocRecorder {
@@ -77,6 +85,8 @@ class EurocRecorder {
   // The touch sensors' reading and the controller's planned stance at an encoder sample.
   void AddContact(int64_t t_ns, const std::array<bool, kNumLegs>& touch, const std::array<bool, kNumLegs>& planned);
   void AddGroundTruth(const GroundTruthState& state);
+  // The movable objects' truth at a camera frame (written only with segmentation enabled).
+  void AddObjectTruth(int64_t t_ns, const std::vector<ObjectTruth>& objects);
   // Writes the sensor.yaml files, commits the CSV files and renames the folder into place.
   void Finish();
 
@@ -100,6 +110,7 @@ class EurocRecorder {
   std::string mav0_;         // DATASET.partial/mav0
   EurocRig rig_;
   CsvStream cam0_, cam1_, depth0_, seg0_, imu0_, joints0_, contact0_, gt0_;
+  CsvStream objects0_;       // objects0/data.csv
   CsvStream seg0_frames_;    // seg0/frame_instances.csv
   // An id seen in the segmentation, for seg0/instances.csv.
   struct SeenInstance {

@@ -31,6 +31,7 @@
 #include "slam/io/euroc_dataset_reader.h"
 #include "slam/io/open_dataset.h"
 #include "slam/io/pose_conversions.h"
+#include "slam/io/calibration_check.h"
 #include "slam/io/camera_file.h"
 #include "slam/io/tum_dataset_reader.h"
 #include "slam/io/viqu_dataset_reader.h"
@@ -1043,7 +1044,7 @@ TEST(DatasetIoBadInput, ACorruptImageIsAnErrorOrWhenAllowedSkippedAloneButNotTwo
   }
   {
     EurocDatasetReader reader(dir.string());
-    reader.AllowSkippingBadFrames(true);
+    reader.AllowSkippingBadFrames(1);
     EXPECT_EQ(reader.NumFrames(), 5u);
     std::vector<int64_t> got;
     StereoFrame f;
@@ -1058,7 +1059,7 @@ TEST(DatasetIoBadInput, ACorruptImageIsAnErrorOrWhenAllowedSkippedAloneButNotTwo
   fs::remove(image(3, "cam1"));  // a missing file counts as unreadable too
   {
     EurocDatasetReader reader(dir.string());
-    reader.AllowSkippingBadFrames(true);
+    reader.AllowSkippingBadFrames(1);
     StereoFrame f;
     ASSERT_TRUE(reader.Next(&f));
     ASSERT_TRUE(reader.Next(&f));
@@ -1069,7 +1070,7 @@ TEST(DatasetIoBadInput, ACorruptImageIsAnErrorOrWhenAllowedSkippedAloneButNotTwo
   WriteText(image(0, "cam0"), "");
   {
     EurocDatasetReader reader(dir.string());
-    reader.AllowSkippingBadFrames(true);
+    reader.AllowSkippingBadFrames(1);
     StereoFrame f;
     ExpectInputError([&] { reader.Next(&f); }, {image(0, "cam0").string(), "first frame"});
   }
@@ -1085,13 +1086,67 @@ TEST(DatasetIoBadInput, ACorruptImageIsAnErrorOrWhenAllowedSkippedAloneButNotTwo
     ExpectInputError([&] { strict.Next(&f); }, {depth.string()});
   }
   ViquDatasetReader reader((tmp.path() / "run").string());
-  reader.AllowSkippingBadFrames(true);
+  reader.AllowSkippingBadFrames(1);
   StereoFrame f;
   std::vector<int64_t> got;
   testing::internal::CaptureStderr();
   while (reader.Next(&f)) got.push_back(f.t_ns);
   testing::internal::GetCapturedStderr();
   EXPECT_EQ(got, (std::vector<int64_t>{rec.frames[0].t_ns, rec.frames[2].t_ns, rec.frames[3].t_ns}));
+}
+
+TEST(CameraFile, RealCalibrationsPassTheSanityCheck) {
+  // EuRoC MH_01's cam0 (its sensor.yaml) and TUM's freiburg1 colour camera (published values).
+  CameraCalibration euroc;
+  euroc.pinhole = {752, 480, 458.654, 457.296, 367.215, 248.375};
+  euroc.distortion = {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05};
+  EXPECT_EQ(CalibrationProblem(euroc, {}, "euroc"), "");
+  CameraCalibration fr1;
+  fr1.pinhole = {640, 480, 517.306408, 516.469215, 318.643040, 255.313989};
+  fr1.distortion = {0.262383, -0.953104, -0.005358, 0.002628, 1.163314};
+  EXPECT_EQ(CalibrationProblem(fr1, {}, "fr1"), "");
+  // Every key out of range is named, with the source when no key is known.
+  CameraCalibration c = fr1;
+  c.pinhole.cx = 99999;
+  EXPECT_NE(CalibrationProblem(c, {}, "fr1").find("fr1: cx 99999 px is outside the 640x480 image"), std::string::npos);
+  c = fr1;
+  c.pinhole.fy = 1e300;
+  EXPECT_NE(CalibrationProblem(c, {"", "cam.yaml:3:5: key 'fy'", "", "", ""}, "x").find("cam.yaml:3:5: key 'fy': fy 1e+300"),
+            std::string::npos);
+  c = fr1;
+  c.pinhole.fx = 0.5;  // a field of view over 179 deg
+  EXPECT_NE(CalibrationProblem(c, {}, "x").find("no focal length"), std::string::npos);
+  c = fr1;
+  c.distortion = {1e6, 0, 0, 0};
+  EXPECT_NE(CalibrationProblem(c, {}, "x").find("scales radii by"), std::string::npos);
+  c = fr1;
+  c.distortion = {-1.2, 0, 0, 0};  // the distorted radius turns back inside the image
+  EXPECT_NE(CalibrationProblem(c, {}, "x").find("folds the image"), std::string::npos);
+  c = fr1;
+  c.distortion = {0, 0, 0.5, 0};
+  EXPECT_NE(CalibrationProblem(c, {}, "x").find("tangential"), std::string::npos);
+  c = fr1;
+  c.distortion = {std::nan(""), 0, 0, 0};
+  EXPECT_NE(CalibrationProblem(c, {}, "x").find("not a finite number"), std::string::npos);
+}
+
+TEST(CameraFile, AbsurdCalibrationsAreRefusedNamingTheKey) {
+  TempDir tmp;
+  const fs::path seq = tmp.path() / "some_sequence";
+  WriteTumSequence(seq, {1.0}, {1.001});
+  // With an image size: refused when the file is read, at the key's line and column.
+  WriteText(tmp.path() / "cx.yaml", "%YAML:1.0\nCamera.fx: 517.3\nCamera.fy: 516.5\nCamera.cx: 99999\nCamera.cy: 255.3\n"
+            "Camera.width: 640\nCamera.height: 480\n");
+  ExpectInputError([&] { ReadCameraFile((tmp.path() / "cx.yaml").string()); },
+                   {"cx.yaml:4:12: key 'Camera.cx'", "outside the 640x480 image"});
+  WriteText(tmp.path() / "fx.yaml", "fx: 1e300\nfy: 500\ncx: 320\ncy: 240\nwidth: 640\nheight: 480\n");
+  ExpectInputError([&] { ReadCameraFile((tmp.path() / "fx.yaml").string()); }, {"fx.yaml:1:5: key 'fx'", "no focal length"});
+  WriteText(tmp.path() / "k1.yaml", "fx: 500\nfy: 500\ncx: 320\ncy: 240\nwidth: 640\nheight: 480\ndistortion: [1e6, 0, 0, 0]\n");
+  ExpectInputError([&] { ReadCameraFile((tmp.path() / "k1.yaml").string()); }, {"k1.yaml:7:13: key 'distortion'", "radii"});
+  // Without an image size (older ORB-SLAM2 files): refused once the images give it, before any frame.
+  WriteText(tmp.path() / "orb_cy.yaml", "%YAML:1.0\nCamera.fx: 517.3\nCamera.fy: 516.5\nCamera.cx: 318.6\nCamera.cy: -3\n");
+  ExpectInputError([&] { TumDatasetReader r(seq.string(), "", (tmp.path() / "orb_cy.yaml").string()); },
+                   {"orb_cy.yaml:5:12: key 'Camera.cy'", "outside the 640x480 image"});
 }
 
 TEST(CameraFile, ReadsOrbSlam2AndOrbSlam3SettingsAndViquCameraYaml) {

@@ -8,6 +8,22 @@
 namespace viqu::io {
 namespace {
 
+// "FILE:LINE:COL: key 'NAME'" of a key that `top` read, or "" when the file does not have it.
+std::string KeyWhere(const YamlSource& src, YamlMapReader& top, const std::string& key) {
+  if (key.empty()) return "";
+  const YAML::Node node = top.Get(key);
+  return node.IsDefined() ? src.Where(key, node) + ": key '" + key + "'" : "";
+}
+
+void NoteKeys(const YamlSource& src, YamlMapReader& top, const std::string& prefix, const std::string& distortion_key,
+              CalibrationKeys* keys) {
+  keys->fx = KeyWhere(src, top, prefix + "fx");
+  keys->fy = KeyWhere(src, top, prefix + "fy");
+  keys->cx = KeyWhere(src, top, prefix + "cx");
+  keys->cy = KeyWhere(src, top, prefix + "cy");
+  keys->distortion = KeyWhere(src, top, distortion_key);
+}
+
 TumCamera ReadViqu(const YamlSource& src, const YAML::Node& root, const std::string& path) {
   YamlMapReader top(src, root, "");
   TumCamera c;
@@ -26,6 +42,8 @@ TumCamera ReadViqu(const YamlSource& src, const YAML::Node& root, const std::str
     src.Fail("distortion", top.Get("distortion"), "expected 4 or 5 coefficients [k1, k2, p1, p2(, k3)]");
   }
   top.RejectUnknownKeys();
+  NoteKeys(src, top, "", "distortion", &c.keys);
+  CheckCalibration(c.calibration, c.keys, path);
   return c;
 }
 
@@ -56,10 +74,18 @@ TumCamera ReadOrbSlam(const YamlSource& src, const YAML::Node& root, const std::
   std::vector<double> d(5, 0.0);
   bool any = false;
   const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
-  for (int i = 0; i < 5; ++i) any = top.Number(prefix + names[i], &d[i]) || any;
+  std::string first_distortion_key;
+  for (int i = 0; i < 5; ++i) {
+    const bool given = top.Number(prefix + names[i], &d[i]);
+    if (given && first_distortion_key.empty()) first_distortion_key = prefix + names[i];
+    any = given || any;
+  }
   if (any) c.calibration.distortion = d;
   for (const char* key : {"DepthMapFactor", "RGBD.DepthMapFactor"}) top.Number(key, &c.depth_scale, NumberRange::Positive());
   c.source = path + " (ORB-SLAM" + (prefix == "Camera1." ? "3" : "2") + " settings)";
+  NoteKeys(src, top, prefix, first_distortion_key, &c.keys);
+  // Without an image size the reader checks it once the images give the size.
+  if (k.width > 0) CheckCalibration(c.calibration, c.keys, c.source);
   return c;
 }
 

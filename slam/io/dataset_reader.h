@@ -33,7 +33,7 @@ class DatasetReader {
   // then it is skipped with a warning on stderr when earlier frames were read and the frame
   // before it was fine (FrameSkipPolicy).
   virtual bool Next(StereoFrame* frame) = 0;
-  void AllowSkippingBadFrames(bool allow) { skip_.Allow(allow); }
+  void AllowSkippingBadFrames(int max_skipped) { skip_.Allow(max_skipped); }
   // Frames skipped so far (unreadable images).
   int frames_skipped() const { return skip_.skipped(); }
 

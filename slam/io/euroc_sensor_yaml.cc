@@ -5,6 +5,7 @@
 #include <Eigen/SVD>
 
 #include "common/errors.h"
+#include "slam/io/calibration_check.h"
 #include "common/yaml_map_reader.h"
 #include "common/yaml_strict.h"
 
@@ -95,6 +96,12 @@ EurocCameraSensor ReadEurocCameraSensor(const std::string& path) {
     }
   }
   out.calibration.distortion = d;
+  CalibrationKeys keys;
+  keys.fx = keys.fy = keys.cx = keys.cy = src.Where("intrinsics", top.Get("intrinsics")) + ": key 'intrinsics'";
+  if (!d.empty()) {
+    keys.distortion = src.Where("distortion_coefficients", top.Get("distortion_coefficients")) + ": key 'distortion_coefficients'";
+  }
+  CheckCalibration(out.calibration, keys, path);
   return out;
 }
 

@@ -8,12 +8,13 @@ namespace viqu::io {
 
 // What a reader does with a frame whose image files cannot be read. By default any such frame is
 // bad input: InputError naming the file (exit 2), since a replay that quietly drops frames is not
-// the run it replays. With Allow(true) (`viqu slam --skip-bad-frames`) a single bad frame among
-// good ones (a truncated file in a long sequence) is skipped with a warning on stderr and counted;
-// a bad first frame, or two bad frames in a row, still point at a broken dataset: InputError.
+// the run it replays. With Allow(n) (`viqu slam --skip-bad-frames [N]`) up to n single bad frames
+// among good ones (a truncated file in a long sequence) are skipped with a warning on stderr and
+// counted; a bad first frame, two bad frames in a row, or one more than n still point at a broken
+// dataset: InputError.
 class FrameSkipPolicy {
  public:
-  void Allow(bool allow) { allow_ = allow; }
+  void Allow(int max_skipped) { max_skipped_ = max_skipped; }
   // The frame was read.
   void Good() {
     any_good_ = true;
@@ -26,7 +27,7 @@ class FrameSkipPolicy {
   int skipped() const { return skipped_; }
 
  private:
-  bool allow_ = false;     // lone bad frames may be skipped
+  int max_skipped_ = 0;    // lone bad frames that may be skipped
   bool any_good_ = false;  // a frame was read
   bool last_bad_ = false;  // the frame before this one could not be read
   int skipped_ = 0;        // frames skipped so far

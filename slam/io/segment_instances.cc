@@ -8,7 +8,6 @@
 #include "slam/io/text_table_reader.h"
 
 namespace viqu::io {
-namespace {
 
 bool ParseCategory(const std::string& name, Category* out) {
   for (int c = 0; c <= static_cast<int>(Category::kRobot); ++c) {
@@ -19,6 +18,8 @@ bool ParseCategory(const std::string& name, Category* out) {
   }
   return false;
 }
+
+namespace {
 
 // Parses "id,category,name..." from fields[first...] into *out; false with *why on bad input.
 bool ParseInstance(const std::vector<std::string>& f, size_t first, SegmentInstance* out, std::string* why) {

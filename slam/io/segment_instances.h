@@ -10,6 +10,9 @@
 
 namespace viqu::io {
 
+// The category named `name` (CategoryName's words); false for any other word.
+bool ParseCategory(const std::string& name, Category* out);
+
 // Reads seg0/instances.csv of a viqu recording, or the instances.csv of a masks folder:
 // "id,category,name" (the name may hold commas); '#' comment lines and a first row that is
 // exactly "id,category,name" (a header) are skipped.

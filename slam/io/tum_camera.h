@@ -1,6 +1,7 @@
 #pragma once
 #include <string>
 
+#include "slam/io/calibration_check.h"
 #include "slam/io/camera_calibration.h"
 
 namespace viqu::io {
@@ -10,6 +11,7 @@ struct TumCamera {
   CameraCalibration calibration;  // intrinsics and size; distortion (freiburg1/2 are distorted)
   double depth_scale = 5000;      // depth PNG value per metre
   std::string source;             // where the values came from, for messages
+  CalibrationKeys keys;           // where each value was written (a file's), for messages
 };
 
 // The camera of the sequence in `dir`:

@@ -44,6 +44,7 @@ TumDatasetReader::TumDatasetReader(const std::string& dir, const std::string& ma
                        "x" + std::to_string(first.rows));
     }
   }
+  CheckCalibration(camera_.calibration, camera_.keys, camera_.source);
   if (!HasNoDistortion(camera_.calibration)) undistorter_ = std::make_unique<ImageUndistorter>(camera_.calibration);
   if (!masks_dir.empty()) masks_.emplace(masks_dir);
   const fs::path gt = d / "groundtruth.txt";
