@@ -4,8 +4,9 @@
 // the dynamic stage drops features (checked: the tests cannot pass with a stage that does
 // nothing); `viqu slam` then replays the recording:
 //  - the project's own format (stereo, masks from seg0): the same trajectory file byte for byte,
-//    the same tracking.csv and the same object decisions in dynamic.csv (the columns that need
-//    no truth). The detector model of this run also reports wrong categories and spurious masks,
+//    the same tracking.csv, and dynamic.csv and the dynamic.* metrics (precision, recall, latency)
+//    exactly, truth columns included (the recording keeps the objects' truth, mav0/objects0).
+//    The detector model of this run also reports wrong categories and spurious masks,
 //    which seg0 must carry per frame;
 //  - a live run in rgbd mode, recorded with both --record and --record-tum, replays exactly from
 //    the project's format in rgbd mode (depth0 holds the live depth's 1/5000 m steps);
@@ -160,6 +161,11 @@ void ExpectSameTrajectory(const fs::path& a, const fs::path& b) {
 
 YAML::Node Metrics(const fs::path& run) { return YAML::LoadFile((run / "metrics.json").string()); }
 
+std::string ReadText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
 // Every single value in the run's metrics.json is a key a sweep can name (runner/metric_keys.h):
 // the list is kept in step with what runs and replays write.
 void ExpectEveryMetricKeyListed(const fs::path& run) {
@@ -198,11 +204,21 @@ void ExpectSameTracking(const fs::path& live, const fs::path& replay) {
   for (size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "tracking.csv row " << i + 1;
 }
 
+// A replay of the project's format scores its decisions against the recorded truth
+// (mav0/objects0): dynamic.csv and every dynamic.* metric are the live run's, exactly.
+void ExpectSameScoredDecisions(const fs::path& live, const fs::path& replay) {
+  EXPECT_EQ(ReadText(replay / "dynamic.csv"), ReadText(live / "dynamic.csv"));
+  const YAML::Node a = Metrics(live)["dynamic"], b = Metrics(replay)["dynamic"];
+  ASSERT_TRUE(b["precision"].IsDefined() && b["recall"].IsDefined() && b["objects"].IsDefined());
+  EXPECT_EQ(YAML::Dump(b), YAML::Dump(a));
+  EXPECT_GT(b["scored_object_frames"].as<int>(), 0);
+}
+
 // The replay's object decisions are the live run's. Live, dynamic.csv has a row for every object
 // the SLAM system reported (dynamic.object_frames of them) and one for every truly visible object
-// that the detector missed (no features, not decided); a replay has no truth, so only the
-// former. Each replay row must be the live row of the same frame and object, less the truth
-// columns, and there must be as many as the live run reported.
+// that the detector missed (no features, not decided); a replay without truth (TUM with --masks)
+// has only the former. Each replay row must be the live row of the same frame and object, less
+// the truth columns, and there must be as many as the live run reported.
 void ExpectSameDecisions(const fs::path& live, const fs::path& replay) {
   const std::vector<std::string> truth = {"visible_px", "truly_moving"};
   const Csv live_csv = ReadCsv(live / "dynamic.csv");
@@ -276,7 +292,7 @@ void ExpectDynamicStageAtWork(const fs::path& live) {
 void ExpectTheLiveRun(const fs::path& live, const fs::path& replay) {
   ExpectSameTrajectory(live / "trajectory_est.txt", replay / "trajectory_est.txt");
   ExpectSameTracking(live, replay);
-  ExpectSameDecisions(live, replay);
+  ExpectSameScoredDecisions(live, replay);
   ExpectEveryMetricKeyListed(live);
   ExpectEveryMetricKeyListed(replay);
   EXPECT_NEAR(Metrics(replay)["path_length_m"].as<double>(), Metrics(live)["path_length_m"].as<double>(), 1e-6);
