@@ -1,5 +1,6 @@
 #include "apps/sweep_tables.h"
 
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 
 #include "common/atomic_file.h"
 #include "common/run_folder.h"
+#include "common/yaml_strict.h"
 
 namespace viqu::app {
 namespace {
@@ -68,9 +70,9 @@ PointOutcome ReadPointOutcome(const SweepSpec& spec, const std::string& run_dir)
     return o;
   }
   try {
-    const YAML::Node marker = YAML::LoadFile(run_dir + "/" + kRunCompleteMarker);
+    const YAML::Node marker = LoadRunJsonFile(run_dir + "/" + kRunCompleteMarker);
     o.exit_code = marker["exit_code"] ? marker["exit_code"].Scalar() : "";
-    const YAML::Node metrics = YAML::LoadFile(run_dir + "/metrics.json");
+    const YAML::Node metrics = LoadRunJsonFile(run_dir + "/metrics.json");
     for (size_t i = 0; i < spec.metrics.size(); ++i) o.metrics[i] = Lookup(metrics, spec.metrics[i]);
     o.wall_s = Lookup(metrics, "timing.wall_time_s");
   } catch (const std::exception&) {

@@ -1,5 +1,6 @@
 #include "common/run_folder.h"
 
+
 #include <algorithm>
 #include <cerrno>
 #include <csignal>
@@ -13,6 +14,7 @@
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "common/json_writer.h"
+#include "common/yaml_strict.h"
 
 namespace viqu {
 namespace fs = std::filesystem;
@@ -227,7 +229,7 @@ bool IsCompleteRunFolder(const std::string& dir, std::string* why) {
   if (fs::exists(root / kRunIncompleteMarker, ec)) {
     std::string reason = "interrupted";
     try {
-      const YAML::Node m = YAML::LoadFile((root / kRunIncompleteMarker).string());
+      const YAML::Node m = LoadRunJsonFile((root / kRunIncompleteMarker).string());
       if (m["reason"]) reason = "interrupted: " + m["reason"].as<std::string>();
     } catch (const std::exception&) {
       reason = "interrupted (its marker is unreadable)";
@@ -239,7 +241,7 @@ bool IsCompleteRunFolder(const std::string& dir, std::string* why) {
                 " (the run was killed, is still running, or was written by an older viqu)");
   }
   try {
-    const YAML::Node m = YAML::LoadFile((root / kRunCompleteMarker).string());
+    const YAML::Node m = LoadRunJsonFile((root / kRunCompleteMarker).string());
     if (!m["files"] || !m["files"].IsSequence()) return fail(std::string(kRunCompleteMarker) + " lists no files");
     for (const YAML::Node& f : m["files"]) {
       const std::string path = f["path"].as<std::string>();

@@ -129,6 +129,11 @@ std::string ReadYamlFileText(const std::string& path) {
 
 YAML::Node LoadYamlFile(const std::string& path) { return ParseText(ReadYamlFileText(path), path, false); }
 
+YAML::Node LoadRunJsonFile(const std::string& path) {
+  constexpr uintmax_t kMaxRunJsonBytes = uintmax_t{64} << 20;
+  return ParseText(ReadInputFile(path, kMaxRunJsonBytes, "run folder's JSON file"), path, true);
+}
+
 YAML::Node LoadYamlText(const std::string& text, const std::string& name) {
   return ParseText(text, name, true);
 }

@@ -32,6 +32,10 @@ YAML::Node LoadYamlFile(const std::string& path);
 // naming the file otherwise. LoadYamlFile parses it; readers of YAML dialects adjust it first.
 std::string ReadYamlFileText(const std::string& path);
 
+// A JSON file of a run folder (its marker, metrics.json), read as any input: a regular file of at
+// most 64 MiB (a marker listing a long recording's images is a few MiB), parsed as YAML.
+YAML::Node LoadRunJsonFile(const std::string& path);
+
 // Parses YAML text of another program's dialect (OpenCV's, with tags such as !!opencv-matrix);
 // `name` stands for the file in messages. A second document is refused as above.
 YAML::Node LoadYamlText(const std::string& text, const std::string& name);
