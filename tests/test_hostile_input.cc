@@ -198,6 +198,12 @@ TEST_F(HostileInput, BadFramesAreCappedAndBrokenMasksRefused) {
   fs::remove(masks / "loop_b");
   std::ofstream(masks / first_rgb, std::ios::binary) << std::string(io::MaxMaskFileBytes(cv::Size(320, 240)) + 1, 'x');
   ExpectRefused(RunViqu(tum), (masks / first_rgb).string(), "too large for a mask image");
+  // A recording's own segmentation image far larger than any 16-bit PNG of its size.
+  const fs::path seg = dir_ / "ds" / "mav0" / "seg0" / "data" / "0.png";
+  ASSERT_TRUE(fs::exists(seg));
+  std::ofstream(seg, std::ios::app | std::ios::binary) << std::string(io::MaxMaskFileBytes(cv::Size(320, 240)), '\0');
+  ExpectRefused(RunViqu("slam " + (dir_ / "ds").string() + " --format viqu --skip-bad-frames 2 --out " + out_), seg.string(),
+                "too large for a 320x240 16-bit segmentation image");
   // The refused replays left the output folder as the last good one made it.
   EXPECT_EQ(YAML::LoadFile(out_ + "/metrics.json")["camera"]["frames_skipped"].as<int>(), 2);
 }

@@ -17,6 +17,19 @@
 namespace viqu::io {
 namespace {
 
+// A 16-bit single-channel image (depth0, seg0) larger than any PNG of its size can honestly be
+// (MaxMaskFileBytes) is a broken recording, not a frame to decode: 200 MB behind a 640x480
+// header was accepted.
+void RequireSized16(const std::string& path, const cv::Size& size, const char* what) {
+  std::error_code ec;
+  const uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > MaxMaskFileBytes(size)) {
+    throw InputError(path + ": " + std::to_string(bytes >> 20) + " MiB, too large for a " + std::to_string(size.width) + "x" +
+                     std::to_string(size.height) + " 16-bit " + what + " (at most " +
+                     std::to_string(MaxMaskFileBytes(size) >> 10) + " KiB)");
+  }
+}
+
 namespace fs = std::filesystem;
 
 // Tolerances for "already rectified": the recorder prints T_BS with 12 significant digits.
@@ -140,6 +153,7 @@ bool ViquDatasetReader::ReadFrame(const ImagePair& files, StereoFrame* frame, st
   frame->baseline_m = baseline_m_;
   const cv::Size size(intrinsics_.width, intrinsics_.height);
   if (const auto it = depth_files_.find(files.t_ns); it != depth_files_.end()) {
+    RequireSized16(it->second, size, "depth image");
     const cv::Mat depth = ReadImage16(it->second, why);
     if (depth.empty()) return false;
     if (depth.size() != size) throw InputError(it->second + ": depth image size differs from the camera's");
@@ -149,6 +163,7 @@ bool ViquDatasetReader::ReadFrame(const ImagePair& files, StereoFrame* frame, st
     frame->left_instance_id = masks_->Read(files.a, size);
     frame->instances = InstancesPresent(frame->left_instance_id, masks_->instances());
   } else if (const auto it = seg_files_.find(files.t_ns); it != seg_files_.end()) {
+    RequireSized16(it->second, size, "segmentation image");
     frame->left_instance_id = ReadImage16(it->second, why);
     if (frame->left_instance_id.empty()) return false;
     if (frame->left_instance_id.size() != size) {
