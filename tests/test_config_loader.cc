@@ -523,3 +523,35 @@ TEST(YamlFileText, ReadsWholeFilesUpToTheLimitAndRefusesLarger) {
 
 }  // namespace
 }  // namespace viqu
+
+namespace viqu {
+namespace {
+
+// A second YAML document is found by its marker line, without parsing it: "---" after content,
+// or content after "...". Markers before any content (an OpenCV file's "%YAML:1.0" then "---"),
+// in comments or indented inside a block scalar are no second document.
+TEST(YamlDocuments, ASecondDocumentIsNamedByItsMarkerLine) {
+  const auto error_of = [](const std::string& text) -> std::string {
+    try {
+      LoadYamlText(text, "f.yaml");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error_of("a: 1\n---\nb: 2\n").rfind("f.yaml:2:1: a second YAML document", 0), 0u);
+  EXPECT_EQ(error_of("a: 1\n...\n# end\nb: 2\n").rfind("f.yaml:4:1: a second YAML document", 0), 0u);
+  EXPECT_EQ(error_of("# head\n---\na: 1\n"), "");
+  EXPECT_EQ(error_of("%YAML 1.2\n---\na: 1\n...\n"), "");
+  EXPECT_EQ(error_of("--- # the only one\na: |\n  ---\n  text\n"), "");
+  EXPECT_EQ(error_of("a: '---'\nb: -- -\n"), "");
+}
+
+// An input on which yaml-cpp's LoadAll never returns (found by fuzz_scenario_loader): the loader
+// reads one document, refuses it, and returns. (A hang here ends at CTest's timeout.)
+TEST(YamlDocuments, AnInputThatHangsLoadAllIsRefusedAtOnce) {
+  EXPECT_THROW(LoadScenario(std::string(VIQU_SOURCE_DIR) + "/tests/data/yaml_loadall_hang.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace viqu

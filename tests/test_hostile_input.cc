@@ -111,7 +111,7 @@ TEST_F(HostileInput, TheCommandLineSaysWhatItTakes) {
 TEST_F(HostileInput, YamlIsReadAsOneDocumentWithoutTags) {
   const std::string two = ScenarioWith(dir_, "---\nname: ignored_before\n");
   const int lines = static_cast<int>(std::count(std::istreambuf_iterator<char>(*new std::ifstream(two)), {}, '\n'));
-  ExpectBadInput(RunViqu("run " + two + " --out " + out_), two + ":" + std::to_string(lines) + ":1:",
+  ExpectBadInput(RunViqu("run " + two + " --out " + out_), two + ":" + std::to_string(lines - 1) + ":1:",
                  "a second YAML document");
   const std::string tagged = ScenarioWith(dir_, "extra: !evil 2\n");
   ExpectBadInput(RunViqu("run " + tagged + " --out " + out_), tagged + ":", "YAML tag '!evil'");
