@@ -107,6 +107,22 @@ LegKinematics LegKinematics::FromUrdfString(const std::string& xml, const std::s
     c.knee_lower = knee->limits->lower;
     c.knee_upper = knee->limits->upper;
     CheckPlanarLeg(c, leg, what);
+    const auto mass_of = [&](const std::string& link_name, Eigen::Vector3d* com) {
+      const auto link = model->getLink(link_name);
+      if (!link || !link->inertial) return 0.0;
+      const urdf::Vector3& o = link->inertial->origin.position;
+      *com = Eigen::Vector3d(o.x, o.y, o.z);
+      return link->inertial->mass;
+    };
+    c.thigh_mass_kg = mass_of(hip->child_link_name, &c.thigh_com);
+    c.shank_mass_kg = mass_of(knee->child_link_name, &c.shank_com);
+    Eigen::Vector3d foot_com = Eigen::Vector3d::Zero();
+    const double foot_mass = mass_of(foot->child_link_name, &foot_com);
+    if (foot_mass > 0) {  // folded into the shank: one rigid body
+      const Eigen::Vector3d p = c.T_shank_foot * foot_com;
+      c.shank_com = (c.shank_mass_kg * c.shank_com + foot_mass * p) / (c.shank_mass_kg + foot_mass);
+      c.shank_mass_kg += foot_mass;
+    }
     const double l1 = -c.T_thigh_knee.translation().z(), l2 = -c.T_shank_foot.translation().z();
     const auto foot_link = model->getLink(foot->child_link_name);
     const auto* sphere = foot_link && foot_link->collision && foot_link->collision->geometry
@@ -151,6 +167,22 @@ Eigen::Matrix<double, 3, 2> LegKinematics::FootJacobian(Leg leg, double theta1, 
   J.col(0) = a1.cross(p_foot - T_trunk_thigh.translation());
   J.col(1) = a2.cross(p_foot - T_trunk_shank.translation());
   return J;
+}
+
+Eigen::Vector2d LegKinematics::GravityTorque(Leg leg, double theta1, double theta2, const Eigen::Vector3d& g_trunk) const {
+  const LegChain& c = chain(leg);
+  const Eigen::Isometry3d T_trunk_thigh = c.T_trunk_hip * RotationAbout(c.hip_axis, theta1);
+  const Eigen::Isometry3d T_trunk_shank = T_trunk_thigh * c.T_thigh_knee * RotationAbout(c.knee_axis, theta2);
+  const Eigen::Vector3d a1 = T_trunk_thigh.linear() * c.hip_axis;
+  const Eigen::Vector3d a2 = T_trunk_shank.linear() * c.knee_axis;
+  const Eigen::Vector3d o1 = T_trunk_thigh.translation(), o2 = T_trunk_shank.translation();
+  const Eigen::Vector3d p_thigh = T_trunk_thigh * c.thigh_com, p_shank = T_trunk_shank * c.shank_com;
+  const Eigen::Vector3d f_thigh = c.thigh_mass_kg * g_trunk, f_shank = c.shank_mass_kg * g_trunk;
+  // The torque of a force f at p about a joint's axis a through o: a . ((p - o) x f).
+  Eigen::Vector2d tau;
+  tau[0] = a1.dot((p_thigh - o1).cross(f_thigh)) + a1.dot((p_shank - o1).cross(f_shank));
+  tau[1] = a2.dot((p_shank - o2).cross(f_shank));
+  return tau;
 }
 
 Eigen::Vector3d LegKinematics::ShankAngularVelocity(Leg leg, double theta1_dot, double theta2_dot) const {

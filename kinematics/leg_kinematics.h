@@ -20,6 +20,11 @@ struct LegChain {
   Eigen::Isometry3d T_shank_foot = Eigen::Isometry3d::Identity();   // foot centre in shank
   double hip_lower = 0, hip_upper = 0;    // joint limits (rad)
   double knee_lower = 0, knee_upper = 0;  // joint limits (rad)
+  // The moving links' masses and centres of mass, from the URDF's <inertial> (a link without one
+  // weighs nothing): the thigh in its own frame, the shank with the foot link in the shank's.
+  double thigh_mass_kg = 0, shank_mass_kg = 0;
+  Eigen::Vector3d thigh_com = Eigen::Vector3d::Zero();  // (m, thigh frame)
+  Eigen::Vector3d shank_com = Eigen::Vector3d::Zero();  // (m, shank frame)
 };
 
 class LegKinematics {
@@ -35,6 +40,11 @@ class LegKinematics {
 
   // d(FootInTrunk)/d(theta1, theta2), 3x2.
   Eigen::Matrix<double, 3, 2> FootJacobian(Leg leg, double theta1, double theta2) const;
+
+  // The torques gravity applies at the leg's joints through its own links (N m, theta1 then
+  // theta2; positive along the joint axes), for the gravity vector in the trunk frame
+  // (g_trunk = R_trunk_world * (0, 0, -9.81)): sum over links of J_com^T m g.
+  Eigen::Vector2d GravityTorque(Leg leg, double theta1, double theta2, const Eigen::Vector3d& g_trunk) const;
 
   // Joint angles that put the foot centre at p_trunk_foot (its component along the pitch axis is
   // ignored: a sagittal leg cannot move its foot sideways). Picks the knee-backward solution

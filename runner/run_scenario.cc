@@ -34,6 +34,7 @@
 #include "sim/imu_model.h"
 #include "sim/segmentation_model.h"
 #include "sim/stereo_renderer.h"
+#include "sim/torque_model.h"
 #include "sim/touch_model.h"
 #include "sim/trajectory_writer.h"
 #include "sim/depth_quantisation.h"
@@ -51,6 +52,7 @@ constexpr uint64_t kStreamJoints = 0x2222'0000'0000'0002ULL;
 constexpr uint64_t kStreamCamera = 0x3333'0000'0000'0003ULL;
 constexpr uint64_t kStreamSegmentation = 0x4444'0000'0000'0004ULL;
 constexpr uint64_t kStreamTouch = 0x5555'0000'0000'0005ULL;
+constexpr uint64_t kStreamTorque = 0x6666'0000'0000'0006ULL;
 
 constexpr double kFallTiltRad = 60.0 * M_PI / 180.0;  // trunk tilt that counts as a fall
 
@@ -96,6 +98,7 @@ struct Sensors {
         joints(s.sensors.joints, s.seed ^ kStreamJoints),
         segmentation(s.sensors.segmentation, s.seed ^ kStreamSegmentation),
         touch(s.sensors.touch, s.seed ^ kStreamTouch),
+        torque(s.sensors.joints, s.seed ^ kStreamTorque),
         camera_rng(s.seed ^ kStreamCamera),
         imu_clock(s.sensors.imu.rate_hz),
         joint_clock(s.sensors.joints.rate_hz),
@@ -104,6 +107,7 @@ struct Sensors {
   sim::EncoderModel joints;
   sim::SegmentationModel segmentation;
   sim::TouchModel touch;
+  sim::TorqueModel torque;
   std::mt19937_64 camera_rng;
   SensorClock imu_clock, joint_clock, camera_clock;
 };
@@ -253,6 +257,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   int64_t frame_index = 0;
   int stop_signal = 0;
   const bool imu_mean = s.sensors.imu.sampling == "mean";  // sensors.imu.sampling, decided once
+  const bool torque_by_mean = s.sensors.joints.torque_sampling == "mean";
   while (true) {
     const int64_t t_ns = world.time_ns();
 
@@ -269,8 +274,12 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
       }
     }
     if (sensors.joint_clock.Due(t_ns)) {
-      const JointState js = sensors.joints.Measure(t_ns, world.JointPositions(), world.JointVelocities(),
-                                                   world.FootContacts());
+      JointState js = sensors.joints.Measure(t_ns, world.JointPositions(), world.JointVelocities(),
+                                             world.FootContacts());
+      // The servos' torque, from its own seeded stream (the encoders' draws do not change).
+      const std::array<double, kNumJoints> torque_mean = world.TakeJointTorqueMean();
+      js.torque_nm = sensors.torque.Measure(torque_by_mean ? torque_mean : world.JointTorques());
+      js.has_torque = true;
       if (recorder) recorder->AddJoints(js);
       // The controller publishes its planned stance with every encoder reading; the touch
       // sensors are read with the encoders (their own seeded stream: reading them changes no other).

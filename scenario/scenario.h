@@ -78,6 +78,19 @@ struct JointsConfig {                // sensors.joints
   double rate_hz = 200;              // (Hz)
   double noise_rad = 0.001;          // white noise std (rad)
   double resolution_rad = 0.0015;    // encoder quantisation step (rad); 0 = none (~12 bit)
+  // Joint torque sensing, the servos' motor current read as torque (sim/torque_model.h). The
+  // servos saturate at 0.6 N m (models/rat/rat.xml forcerange); the defaults are a hobby servo's
+  // current sense: about 1% of that range as noise, a 10-bit reading over it, a bias of half the
+  // noise per joint. Not measured against a real servo: set them from its data sheet.
+  double torque_noise_nm = 0.005;        // white noise std (N m)
+  double torque_resolution_nm = 0.001;   // quantisation step (N m); 0 = none
+  double torque_bias_nm = 0.0025;        // std of each joint's constant offset, drawn once a run (N m)
+  double torque_delay_s = 0;             // the reading is the torque this long before it, rounded to
+                                         // whole encoder periods (s)
+  // "instant": the torque of the last physics step (one step behind the encoder's position, see
+  // sim::World::JointTorques); "mean": the mean over the physics steps since the last reading (a
+  // current sensor's low-pass, or a servo that averages between reports).
+  std::string torque_sampling = "instant";
 };
 
 struct TouchConfig {                 // sensors.touch: foot touch sensors, read with the encoders

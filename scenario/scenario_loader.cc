@@ -180,6 +180,11 @@ void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
   joints.Number("rate_hz", &s->joints.rate_hz, rate);
   joints.Number("noise_rad", &s->joints.noise_rad, NumberRange::NonNegative());
   joints.Number("resolution_rad", &s->joints.resolution_rad, NumberRange::Closed(0, 0.1));
+  joints.Number("torque_noise_nm", &s->joints.torque_noise_nm, NumberRange::Closed(0, 10));
+  joints.Number("torque_resolution_nm", &s->joints.torque_resolution_nm, NumberRange::Closed(0, 1));
+  joints.Number("torque_bias_nm", &s->joints.torque_bias_nm, NumberRange::Closed(0, 10));
+  joints.Number("torque_delay_s", &s->joints.torque_delay_s, NumberRange::Closed(0, 1));
+  joints.Choice("torque_sampling", &s->joints.torque_sampling, {"instant", "mean"});
   joints.RejectUnknownKeys();
 
   YamlMapReader touch = m.Map("touch");

@@ -82,6 +82,11 @@ void Sensors(YAML::Emitter& out, const SensorsConfig& s) {
   EmitNumber(out, "rate_hz", s.joints.rate_hz);
   EmitNumber(out, "noise_rad", s.joints.noise_rad);
   EmitNumber(out, "resolution_rad", s.joints.resolution_rad);
+  EmitNumber(out, "torque_noise_nm", s.joints.torque_noise_nm);
+  EmitNumber(out, "torque_resolution_nm", s.joints.torque_resolution_nm);
+  EmitNumber(out, "torque_bias_nm", s.joints.torque_bias_nm);
+  EmitNumber(out, "torque_delay_s", s.joints.torque_delay_s);
+  out << YAML::Key << "torque_sampling" << YAML::Value << s.joints.torque_sampling;
   out << YAML::EndMap;
   out << YAML::Key << "touch" << YAML::Value << YAML::Flow << YAML::BeginMap;
   EmitNumber(out, "threshold_n", s.touch.threshold_n);

@@ -121,6 +121,7 @@ EurocRecorder::EurocRecorder(const std::string& dataset_dir, const EurocRig& rig
   for (const char* j : kJointNames) joints_header += std::string(",") + j + " [rad]";
   for (const char* j : kJointNames) joints_header += std::string(",") + j + "_vel [rad s^-1]";
   for (const char* f : kFootNames) joints_header += std::string(",") + f + "_contact [0/1]";
+  for (const char* j : kJointNames) joints_header += std::string(",") + j + "_torque [N m]";
   joints0_ = OpenCsv("joints0", joints_header + "\n");
   std::string contact_header = "#timestamp [ns]";
   for (const char* f : kFootNames) contact_header += std::string(",") + f + "_touch [0/1]";
@@ -226,6 +227,7 @@ void EurocRecorder::AddJoints(const JointState& j) {
   for (double q : j.position_rad) row += "," + Exact(q);
   for (double v : j.velocity_rad_s) row += "," + Exact(v);
   for (bool c : j.contact) row += c ? ",1" : ",0";
+  for (double t : j.torque_nm) row += "," + Exact(t);
   joints0_.file->Write(row + "\n");
 }
 
@@ -306,9 +308,14 @@ void EurocRecorder::WriteSensorFiles() const {
                   "sensor_type: joint_encoders\ncomment: viqu leg joint encoders and foot contact truth\n"
                   "rate_hz: " + Fmt("%.9g", rig_.joints.rate_hz) + "\n"
                   "joints: [" + joint_list + "]  # columns: positions (rad), then velocities (rad/s)\n"
-                  "feet: [FL, FR, BL, BR]  # contact columns (1 = touching)\n"
+                  "feet: [FL, FR, BL, BR]  # contact columns (1 = touching), then the joints' torques (N m)\n"
                   "noise_rad: " + Fmt("%.9g", rig_.joints.noise_rad) + "\n"
-                  "resolution_rad: " + Fmt("%.9g", rig_.joints.resolution_rad) + "\n");
+                  "resolution_rad: " + Fmt("%.9g", rig_.joints.resolution_rad) + "\n"
+                  "torque_noise_nm: " + Fmt("%.9g", rig_.joints.torque_noise_nm) + "\n"
+                  "torque_resolution_nm: " + Fmt("%.9g", rig_.joints.torque_resolution_nm) + "\n"
+                  "torque_bias_nm: " + Fmt("%.9g", rig_.joints.torque_bias_nm) + "\n"
+                  "torque_delay_s: " + Fmt("%.9g", rig_.joints.torque_delay_s) + "\n"
+                  "torque_sampling: " + rig_.joints.torque_sampling + "\n");
   WriteFileAtomic(m + "state_groundtruth_estimate0/sensor.yaml",
                   "sensor_type: visual-inertial\ncomment: ground truth of the body (IMU) frame in the world "
                   "frame (z up), from the simulator; biases are written as 0\n");

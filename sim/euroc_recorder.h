@@ -42,7 +42,8 @@ struct EurocRig {
 //                                                                  (with seg0): scores a replay's
 //                                                                  dynamic-object decisions
 //   DATASET/mav0/imu0/{data.csv, sensor.yaml}
-//   DATASET/mav0/joints0/{data.csv, sensor.yaml}                   encoders and foot contacts (truth)
+//   DATASET/mav0/joints0/{data.csv, sensor.yaml}                   encoders, foot contacts (truth) and
+//                                                                  the servos' torques
 //   DATASET/mav0/contact0/data.csv                                 foot touch sensors and the
 //                                                                  gait's planned stance
 //   DATASET/mav0/robot.urdf                                        the robot's kinematics

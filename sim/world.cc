@@ -100,6 +100,25 @@ void World::Step() {
   accel_sum_ += TrueAccel();
   gyro_sum_ += TrueGyro();
   ++imu_steps_;
+  const std::array<double, kNumJoints> tau = JointTorques();
+  for (int i = 0; i < kNumJoints; ++i) torque_sum_[i] += tau[i];
+  ++torque_steps_;
+}
+
+std::array<double, kNumJoints> World::JointTorques() const {
+  std::array<double, kNumJoints> tau{};
+  for (int i = 0; i < kNumJoints; ++i) tau[i] = data_->qfrc_actuator[dof_adr_[i]];
+  return tau;
+}
+
+std::array<double, kNumJoints> World::TakeJointTorqueMean() {
+  std::array<double, kNumJoints> mean = JointTorques();
+  if (torque_steps_ > 0) {
+    for (int i = 0; i < kNumJoints; ++i) mean[i] = torque_sum_[i] / torque_steps_;
+  }
+  torque_sum_.fill(0.0);
+  torque_steps_ = 0;
+  return mean;
 }
 
 World::ImuMean World::TakeImuMean() {

@@ -58,6 +58,15 @@ class World {
     Eigen::Vector3d accel_i, gyro_i;
   };
   ImuMean TakeImuMean();
+  // The torque each leg servo applies to its joint (N m, joint order of JointPositions), as a
+  // motor-current reading would give it: MuJoCo's actuator force on the joint (qfrc_actuator).
+  // mj_step computes it from the state the step starts from, so after a step it is the torque
+  // applied over that step, [t - dt, t): one physics step behind JointPositions(). Before any
+  // step, that of the initial state.
+  std::array<double, kNumJoints> JointTorques() const;
+  // The mean of JointTorques() over the physics steps since the last call, and starts a new
+  // interval; before any step, JointTorques().
+  std::array<double, kNumJoints> TakeJointTorqueMean();
   bool TrunkTouchesGround() const;    // trunk or head geom in contact with a non-robot geom
   double TrunkTiltRad() const;        // angle between trunk z and world z (rad)
 
@@ -82,6 +91,8 @@ class World {
   int accel_adr_ = -1, gyro_adr_ = -1;  // sensordata addresses
   Eigen::Vector3d accel_sum_ = Eigen::Vector3d::Zero(), gyro_sum_ = Eigen::Vector3d::Zero();
   int imu_steps_ = 0;                     // physics steps summed in accel_sum_ / gyro_sum_
+  std::array<double, kNumJoints> torque_sum_{};  // JointTorques() summed over torque_steps_ steps (N m)
+  int torque_steps_ = 0;
   std::array<int, kNumJoints> qpos_adr_{}, dof_adr_{}, actuator_{};
   std::array<int, kNumLegs> foot_geom_{}, foot_site_{};
   std::vector<int> trunk_geoms_;

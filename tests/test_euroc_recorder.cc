@@ -4,6 +4,7 @@
 #include <limits>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 
 #include "common/errors.h"
 #include "sim/euroc_recorder.h"
+#include "slam/io/proprioception_reader.h"
 
 namespace viqu::sim {
 namespace {
@@ -93,6 +95,57 @@ class EurocRecorderTest : public ::testing::Test {
   EurocRig rig_;
 };
 
+// joints0 keeps the servos' torques after the encoder columns, with the digits that read back
+// exactly; a recording made before torque sensing (20 values a row) reads back without torque.
+TEST_F(EurocRecorderTest, JointTorquesReadBackExactlyAndOldRecordingsHaveNone) {
+  const fs::path dataset = dir_ / "dataset";
+  {
+    EurocRecorder rec(dataset.string(), rig_);
+    for (int i = 0; i < 3; ++i) rec.AddFrame(Frame(i * 50000000));
+    for (int i = 0; i < 2; ++i) {
+      JointState j;
+      j.t_ns = i * 5000000;
+      j.position_rad.fill(0.5);
+      for (int k = 0; k < kNumJoints; ++k) j.torque_nm[k] = 0.1234567890123457 * (k - 3) + 1e-7 * i;
+      j.has_torque = true;
+      rec.AddJoints(j);
+    }
+    rec.AddContact(0, {true, true, true, true}, {true, true, true, true});
+    ImuSample imu;
+    imu.accel_i = Eigen::Vector3d(0, 0, 9.81);
+    rec.AddImu(imu);  // the reader needs one
+    rec.Finish();
+  }
+  std::ofstream(dataset / "mav0" / "robot.urdf") << "<robot name='rat'/>\n";  // the reader needs one
+  const std::optional<io::Proprioception> p = io::ReadViquProprioception(dataset.string());
+  ASSERT_TRUE(p.has_value());
+  ASSERT_EQ(p->joints.size(), 2u);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_TRUE(p->joints[i].has_torque);
+    for (int k = 0; k < kNumJoints; ++k) EXPECT_EQ(p->joints[i].torque_nm[k], 0.1234567890123457 * (k - 3) + 1e-7 * i);
+  }
+  const YAML::Node sensor = YAML::LoadFile((dataset / "mav0" / "joints0" / "sensor.yaml").string());
+  EXPECT_EQ(sensor["torque_sampling"].as<std::string>(), rig_.joints.torque_sampling);
+  // The same rows cut to the encoder columns, as recorded before torque sensing.
+  const fs::path csv = dataset / "mav0" / "joints0" / "data.csv";
+  std::ifstream in(csv);
+  std::string line, old;
+  while (std::getline(in, line)) {
+    if (line[0] != '#') {
+      size_t at = 0;
+      for (int c = 0; c < 21; ++c) at = line.find(',', at + 1);
+      line = line.substr(0, at);
+    }
+    old += line + "\n";
+  }
+  in.close();
+  std::ofstream(csv) << old;
+  const std::optional<io::Proprioception> before = io::ReadViquProprioception(dataset.string());
+  ASSERT_TRUE(before.has_value());
+  EXPECT_FALSE(before->joints[0].has_torque);
+  EXPECT_EQ(before->joints[1].position_rad[0], 0.5);
+}
+
 TEST_F(EurocRecorderTest, WritesTheEurocLayoutOnlyOnFinish) {
   const fs::path dataset = dir_ / "dataset";
   const fs::path mav0 = dataset / "mav0";
@@ -133,10 +186,12 @@ TEST_F(EurocRecorderTest, WritesTheEurocLayoutOnlyOnFinish) {
   EXPECT_EQ(imu[2], "2500000,0.1,0.2,0.3,0,0,9.81");
   const std::vector<std::string> joints = ReadLines(mav0 / "joints0/data.csv");
   ASSERT_EQ(joints.size(), 3u);
-  EXPECT_EQ(Columns(joints[0]), 21u);
-  EXPECT_EQ(Columns(joints[1]), 21u);
+  // Stamp, 8 positions, 8 velocities, 4 contacts, 8 torques.
+  EXPECT_EQ(Columns(joints[0]), 29u);
+  EXPECT_EQ(Columns(joints[1]), 29u);
   EXPECT_EQ(joints[0].rfind("#timestamp [ns],FL_hip [rad],FL_knee [rad],FR_hip [rad]", 0), 0u) << joints[0];
-  EXPECT_EQ(joints[1].substr(joints[1].size() - 8), ",1,0,0,1");
+  EXPECT_NE(joints[0].find("BR_contact [0/1],FL_hip_torque [N m]"), std::string::npos) << joints[0];
+  EXPECT_EQ(joints[1].substr(joints[1].size() - 24), ",1,0,0,1,0,0,0,0,0,0,0,0");
   // Touch sensors and planned stance, one row per encoder reading (none recorded here: header only).
   const std::vector<std::string> contact = ReadLines(mav0 / "contact0/data.csv");
   ASSERT_GE(contact.size(), 1u);

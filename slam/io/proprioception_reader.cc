@@ -30,7 +30,9 @@ std::optional<Proprioception> ReadViquProprioception(const std::string& dir) {
   Proprioception p;
   p.urdf_path = (mav0 / "robot.urdf").string();
   p.imu = ReadImuCsv((mav0 / "imu0" / "data.csv").string());
-  ReadStampedRows((mav0 / "joints0" / "data.csv").string(), 2 * kNumJoints + kNumLegs,
+  // joints0: positions, velocities, contacts, then (since torque sensing) the servos' torques.
+  constexpr size_t kEncoderColumns = 2 * kNumJoints + kNumLegs;
+  ReadStampedRows((mav0 / "joints0" / "data.csv").string(), kEncoderColumns,
            [&](int64_t t, const std::vector<double>& v, const TextTableReader& table) {
              JointState j;
              j.t_ns = t;
@@ -39,8 +41,13 @@ std::optional<Proprioception> ReadViquProprioception(const std::string& dir) {
                j.velocity_rad_s[i] = v[kNumJoints + i];
              }
              for (int i = 0; i < kNumLegs; ++i) j.contact[i] = Bit(v[2 * kNumJoints + i], table);
+             j.has_torque = v.size() > kEncoderColumns;
+             if (j.has_torque) {
+               for (int i = 0; i < kNumJoints; ++i) j.torque_nm[i] = v[kEncoderColumns + i];
+             }
              p.joints.push_back(j);
-           });
+           },
+           kEncoderColumns + kNumJoints);
   ReadStampedRows((mav0 / "contact0" / "data.csv").string(), 2 * kNumLegs,
            [&](int64_t t, const std::vector<double>& v, const TextTableReader& table) {
              ContactReading touch{t, {}}, planned{t, {}};
