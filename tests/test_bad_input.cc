@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/scenario_text.h"
 #include "tests/viqu_program.h"
 
 namespace viqu {
@@ -16,6 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ProgramResult;
 using testing::RunViqu;
+using testing::ScenarioWith;
+using testing::WriteText;
 
 const std::string kSource = VIQU_SOURCE_DIR;
 const std::string kScenario = kSource + "/scenarios/static_room.yaml";
@@ -28,7 +31,6 @@ fs::path Fresh(const std::string& tag) {
   return dir;
 }
 
-void WriteText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 int LineCount(const std::string& path) {
   std::ifstream in(path);
@@ -37,16 +39,6 @@ int LineCount(const std::string& path) {
   return n;
 }
 
-// The scenario file with `extra` appended (paths made absolute so it can live elsewhere).
-std::string ScenarioWith(const fs::path& dir, const std::string& name, const std::string& extra) {
-  std::ifstream in(kScenario);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  for (size_t at; (at = text.find("../models")) != std::string::npos;) text.replace(at, 9, kSource + "/models");
-  for (size_t at; (at = text.find("../assets")) != std::string::npos;) text.replace(at, 9, kSource + "/assets");
-  const fs::path p = dir / name;
-  WriteText(p, text + extra);
-  return p.string();
-}
 
 // Expects exit 2 with viqu's message on the first line, starting with `where` and holding `what`.
 void ExpectBadInput(const ProgramResult& r, const std::string& where, const std::string& what) {

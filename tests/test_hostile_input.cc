@@ -15,6 +15,7 @@
 
 #include "common/output_lock.h"
 #include "slam/io/instance_mask_folder.h"
+#include "tests/scenario_text.h"
 #include "tests/viqu_program.h"
 
 namespace viqu {
@@ -22,18 +23,16 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::ProgramResult;
+using testing::ReadText;
 using testing::RunViqu;
+using testing::ScenarioWith;
+using testing::WriteText;
 
 const std::string kSource = VIQU_SOURCE_DIR;
 const std::string kStatic = kSource + "/scenarios/static_room.yaml";
 const std::string kPeople = kSource + "/scenarios/walking_people.yaml";
 const std::string kSmall = " --set sensors.camera.width=320 --set sensors.camera.height=240";
 
-void WriteText(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
-std::string ReadText(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
 
 // Expects exit 2 with viqu's message first, starting with `where` and holding `what`.
 void ExpectBadInput(const ProgramResult& r, const std::string& where, const std::string& what) {
@@ -51,15 +50,6 @@ void ExpectRefused(const ProgramResult& r, const std::string& where, const std::
   EXPECT_NE(r.output.substr(at, r.output.find('\n', at) - at).find(what), std::string::npos) << r.output;
 }
 
-// static_room with `extra` appended (paths made absolute so that it can live elsewhere).
-std::string ScenarioWith(const fs::path& dir, const std::string& extra) {
-  std::string text = ReadText(kStatic);
-  for (size_t at; (at = text.find("../models")) != std::string::npos;) text.replace(at, 9, kSource + "/models");
-  for (size_t at; (at = text.find("../assets")) != std::string::npos;) text.replace(at, 9, kSource + "/assets");
-  const fs::path p = dir / "scenario.yaml";
-  WriteText(p, text + extra);
-  return p.string();
-}
 
 class HostileInput : public ::testing::Test {
  protected:
@@ -109,11 +99,11 @@ TEST_F(HostileInput, TheCommandLineSaysWhatItTakes) {
 
 // Item 9: a second YAML document and tags are refused where they stand.
 TEST_F(HostileInput, YamlIsReadAsOneDocumentWithoutTags) {
-  const std::string two = ScenarioWith(dir_, "---\nname: ignored_before\n");
+  const std::string two = ScenarioWith(dir_, "scenario.yaml", "---\nname: ignored_before\n");
   const int lines = static_cast<int>(std::count(std::istreambuf_iterator<char>(*new std::ifstream(two)), {}, '\n'));
   ExpectBadInput(RunViqu("run " + two + " --out " + out_), two + ":" + std::to_string(lines - 1) + ":1:",
                  "a second YAML document");
-  const std::string tagged = ScenarioWith(dir_, "extra: !evil 2\n");
+  const std::string tagged = ScenarioWith(dir_, "scenario.yaml", "extra: !evil 2\n");
   ExpectBadInput(RunViqu("run " + tagged + " --out " + out_), tagged + ":", "YAML tag '!evil'");
   ExpectBadInput(RunViqu("run " + kStatic + " --out " + out_ + " --set 'duration_s=!!str 2'"), "--set duration_s=!!str 2",
                  "YAML tag");
@@ -212,7 +202,7 @@ TEST_F(HostileInput, BadFramesAreCappedAndBrokenMasksRefused) {
 TEST_F(HostileInput, ATinyCameraIsNamedWhereItWasSet) {
   ExpectBadInput(RunViqu("run " + kStatic + " --out " + out_ + " --set sensors.camera.width=16 --set sensors.camera.height=16"),
                  "--set sensors.camera.height=16", "too small for the SLAM settings' ORB pyramid");
-  const std::string file = ScenarioWith(dir_, "");
+  const std::string file = ScenarioWith(dir_, "scenario.yaml", "");
   std::string text = ReadText(file);
   const size_t at = text.find("width: 640, height: 480");
   ASSERT_NE(at, std::string::npos) << text;

@@ -22,6 +22,17 @@ namespace {
 constexpr double kStandBound = 0.06;
 constexpr double kTrotBound = 0.45;
 
+// The rat on the flat world, walking straight at `speed_mps` (0: standing).
+Scenario FlatScenario(double speed_mps) {
+  Scenario s;
+  s.name = "torque_test";
+  s.seed = 3;
+  s.world = std::string(VIQU_SOURCE_DIR) + "/models/worlds/flat.xml";
+  s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
+  s.robot.command.velocity = {{0.0, speed_mps, 0.0}};
+  return s;
+}
+
 JointsConfig Ideal() {
   JointsConfig c;
   c.rate_hz = 200;
@@ -107,13 +118,7 @@ TEST(TorqueModel, RefusesBadSettingsAndNonFiniteTorques) {
 // velocity), computed from the state the step starts from. Worked out here from mjModel's
 // actuator parameters and the state before each step, over a second of trotting, for every joint.
 TEST(TorqueModel, TheWorldsTorqueIsThePositionServosLaw) {
-  Scenario s;
-  s.name = "torque_test";
-  s.seed = 3;
-  s.world = std::string(VIQU_SOURCE_DIR) + "/models/worlds/flat.xml";
-  s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
-  s.robot.command.velocity = {{0.0, 0.12, 0.0}};
-  runner::RobotRig rig(s);
+  runner::RobotRig rig(FlatScenario(0.12));
   sim::World& w = rig.world();
   const mjModel* m = w.model();
   const char* names[kNumJoints] = {"FL_hip", "FL_knee", "FR_hip", "FR_knee", "BL_hip", "BL_knee", "BR_hip", "BR_knee"};
@@ -213,16 +218,10 @@ TEST(FootForce, TheTransposedJacobianGivesTheHandWorkedForce) {
 // Against the simulator's contact forces (truth for tests only), from the servos' true torques
 // and the true joint state, the attitude from the ground truth: standing, and trotting.
 TEST(FootForce, FollowsTheSimulatorsContactForces) {
-  Scenario s;
-  s.name = "force_test";
-  s.seed = 3;
-  s.world = std::string(VIQU_SOURCE_DIR) + "/models/worlds/flat.xml";
-  s.robot.model = std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.xml";
   const kin::LegKinematics kin = RatKinematics();
   const double weight_n = kin.total_mass() * 9.81;
   for (const bool trot : {false, true}) {
-    s.robot.command.velocity = {{0.0, trot ? 0.12 : 0.0, 0.0}};
-    runner::RobotRig rig(s);
+    runner::RobotRig rig(FlatScenario(trot ? 0.12 : 0.0));
     sim::World& w = rig.world();
     lo::FootForceEstimator est(kin);
     double sq = 0, stand_sum = 0;
