@@ -27,7 +27,7 @@ constexpr int kMarkerFormat = 1;  // version of the markers' layout
 // (and a marker or a metrics.json) is ours to replace without --force.
 const char* const kOwnedNames[] = {"scenario.yaml", "metrics.json", "slam_settings.yaml", "trajectory_gt.txt",
                                    "trajectory_est.txt", "trajectory_lo.txt", "tracking.csv", "dynamic.csv",
-                                   "lo.csv", "slip.csv", "dataset", "dataset_tum", "video.mp4", "plots",
+                                   "lo.csv", "slip.csv", "contact.csv", "dataset", "dataset_tum", "video.mp4", "plots",
                                    "run_complete.json", "run_incomplete.json"};
 
 // Whether every entry of `dir` is one a run writes (or a temporary of one), with a marker or a

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "common/atomic_file.h"
 #include "slam/eval/trajectory_error.h"
@@ -14,12 +15,15 @@ LoRun::LoRun(const slam::LegOdometrySettings& settings, const kin::LegKinematics
       T_body_cam_(T_body_cam),
       out_dir_(out_dir),
       writer_(out_dir + "/trajectory_lo.txt"),
-      log_(std::make_unique<AtomicOutputFile>(out_dir + "/lo.csv")) {
+      log_(std::make_unique<AtomicOutputFile>(out_dir + "/lo.csv")),
+      oracle_(kin, settings.slip_travel_m),
+      forces_(kin) {
   lo_.Start(t0_ns, T_w_body0);
   std::string header = "t_s,x,y,z,vx,vy,vz,true_x,true_y,true_z,true_vx,true_vy,true_vz";
   for (int i = 0; i < kNumLegs; ++i) {
     const std::string n = LegName(static_cast<Leg>(i));
-    header += "," + n + "_contact," + n + "_slip," + n + "_m2," + n + "_true_contact," + n + "_sole_speed";
+    header += "," + n + "_contact," + n + "_slip," + n + "_m2," + n + "_true_contact," + n + "_sole_speed," + n +
+              "_true_travel," + n + "_normal_n," + n + "_true_normal_n," + n + "_travel," + n + "_slipped";
   }
   log_->Write(header + "\n");
 }
@@ -27,34 +31,50 @@ LoRun::LoRun(const slam::LegOdometrySettings& settings, const kin::LegKinematics
 void LoRun::AddJoints(const JointState& js, int64_t period_ns, const LoTruth& truth) {
   lo_.AddJoints(js);
   true_gyro_bias_i_ = truth.gyro_bias_i;
+  // The foot forces from the torques, with the attitude's gravity; their vertical part is the
+  // normal force on flat ground (on a slope it is the normal force's vertical share).
+  const Eigen::Matrix3d R = lo_.attitude().q_w_b().toRotationMatrix();
+  const lo::FootForces f = forces_.Update(js, R.transpose() * Eigen::Vector3d(0, 0, -9.81));
+  std::array<double, kNumLegs> est_normal;
+  for (int i = 0; i < kNumLegs; ++i) {
+    est_normal[i] = f.valid[i] ? (R * f.f_trunk[i]).z() : std::numeric_limits<double>::quiet_NaN();
+  }
+  Eigen::Isometry3d T_true = Eigen::Isometry3d::Identity();
+  T_true.linear() = truth.q_w_body.normalized().toRotationMatrix();
+  T_true.translation() = truth.p_w_body;
+  oracle_.Add(js, T_true, truth.w_body, truth.contact);
   const Eigen::Vector3d p = lo_.filter().position(), v = lo_.filter().velocity();
   char buf[256];
   std::snprintf(buf, sizeof buf, "%s,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f",
                 sim::FormatSeconds(js.t_ns).c_str(), p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), truth.p_w_body.x(),
                 truth.p_w_body.y(), truth.p_w_body.z(), truth.vel_w_body.x(), truth.vel_w_body.y(), truth.vel_w_body.z());
   std::string line = buf;
+  std::array<bool, kNumLegs> contact{}, detected{}, gated{};
+  std::array<double, kNumLegs> m2{}, travel{};
   for (int i = 0; i < kNumLegs; ++i) {
-    const lo::FootStatus& f = lo_.feet()[i];
-    std::snprintf(buf, sizeof buf, ",%d,%d,%.3g,%d,%.4f", f.contact ? 1 : 0, f.slipping ? 1 : 0, f.mahalanobis2,
-                  truth.contact[i] ? 1 : 0, truth.sole_speed_mps[i]);
+    const lo::FootStatus& foot = lo_.feet()[i];
+    std::snprintf(buf, sizeof buf, ",%d,%d,%.3g,%d,%.4f,%.4f,%.2f,%.2f,%.4f,%d", foot.contact ? 1 : 0,
+                  foot.slipping ? 1 : 0, foot.mahalanobis2, truth.contact[i] ? 1 : 0, truth.sole_speed_mps[i],
+                  truth.travel_m[i], est_normal[i], truth.normal_force_n[i], foot.travel_m, foot.slipped ? 1 : 0);
     line += buf;
+    contact[i] = foot.contact;
+    detected[i] = foot.slipped;
+    gated[i] = foot.slipping;
+    m2[i] = foot.mahalanobis2;
+    travel[i] = foot.travel_m;
   }
   log_->Write(line + "\n");
-  std::array<bool, kNumLegs> true_slip{}, detected{};
-  std::array<double, kNumLegs> m2{};
-  for (int i = 0; i < kNumLegs; ++i) {
-    true_slip[i] = truth.contact[i] && truth.sole_speed_mps[i] > kSlipSpeedMps;
-    detected[i] = lo_.feet()[i].slipping;
-    m2[i] = lo_.feet()[i].mahalanobis2;
-  }
-  truth_events_.Add(js.t_ns, period_ns, true_slip, truth.sole_speed_mps);
-  detected_events_.Add(js.t_ns, period_ns, detected, m2);
+  detected_events_.Add(js.t_ns, period_ns, contact, detected, travel);
+  gate_events_.Add(js.t_ns, period_ns, contact, gated, m2);
+  oracle_events_.Add(js.t_ns, period_ns, truth.contact, oracle_.slipped(), oracle_.travel_m());
+  contact_score_.Add(js.t_ns, contact, truth.contact, est_normal, truth.normal_force_n);
   if (fused_) {
     for (int i = 0; i < kNumLegs; ++i) {
-      detected[i] = fused_->feet()[i].slipping;
-      m2[i] = fused_->feet()[i].mahalanobis2;
+      contact[i] = fused_->feet()[i].contact;
+      detected[i] = fused_->feet()[i].slipped;
+      travel[i] = fused_->feet()[i].travel_m;
     }
-    fused_events_.Add(js.t_ns, period_ns, detected, m2);
+    fused_events_.Add(js.t_ns, period_ns, contact, detected, travel);
   }
 }
 
@@ -64,19 +84,35 @@ void LoRun::AddFrame(int64_t t_ns) {
   est_.push_back(p);
 }
 
-LoSummary LoRun::Finish(const eval::Trajectory& gt_cam, double path_length_m, JsonWriter* json) {
+LoSummary LoRun::Finish(const eval::Trajectory& gt_cam, double path_length_m, const std::vector<TrueStance>& stances,
+                        const ScoringConfig& scoring, JsonWriter* json) {
   writer_.Close();
   log_->Commit();
   LoSummary s;
-  std::vector<SlipEvent> truth = truth_events_.Finish();
+  SlipScoreOptions opt;
+  opt.match_before_s = scoring.slip_match_before_s;
+  opt.match_after_s = scoring.slip_match_after_s;
+  opt.path_length_m = path_length_m;
+  std::vector<SlipEvent> truth = TrueSlipEvents(stances);
   std::vector<SlipEvent> detected = detected_events_.Finish();
   if (fused_) {
     std::vector<SlipEvent> truth_copy = truth;  // ScoreSlip marks the matches in place
     std::vector<SlipEvent> fused = fused_events_.Finish();
-    s.slip_fused = ScoreSlip(&truth_copy, &fused, kSlipMatchToleranceS);
+    s.slip_fused = ScoreSlip(&truth_copy, &fused, opt);
   }
-  s.slip = ScoreSlip(&truth, &detected, kSlipMatchToleranceS);
+  {
+    std::vector<SlipEvent> truth_copy = truth;
+    std::vector<SlipEvent> gate = gate_events_.Finish();
+    s.slip_gate = ScoreSlip(&truth_copy, &gate, opt);
+    truth_copy = truth;
+    std::vector<SlipEvent> oracle = oracle_events_.Finish();
+    s.slip_oracle = ScoreSlip(&truth_copy, &oracle, opt);
+  }
+  s.slip = ScoreSlip(&truth, &detected, opt);
   WriteFileAtomic(out_dir_ + "/slip.csv", SlipCsv(truth, detected));
+  std::string contact_csv;
+  s.contact = contact_score_.Finish(stances, &contact_csv);
+  WriteFileAtomic(out_dir_ + "/contact.csv", contact_csv);
   s.update_ms_mean = lo_.mean_update_ms();
   if (!gt_cam.empty() && est_.size() >= 3) {
     const eval::AteResult ate = eval::ComputeAte(est_, gt_cam);
@@ -103,26 +139,59 @@ LoSummary LoRun::Finish(const eval::Trajectory& gt_cam, double path_length_m, Js
   json->Set("lo.yaw_bias_pieces", lo_.yaw_bias().pieces());
   json->Set("lo.yaw_bias_rejected", lo_.yaw_bias().rejected());
   json->Set("lo.yaw_bias_turning", lo_.yaw_bias().turning());
-  json->Set("slip.precision", s.slip.precision);
-  json->Set("slip.recall", s.slip.recall);
-  json->Set("slip.events", s.slip.detected_events);
-  json->Set("slip.truth_events", s.slip.truth_events);
-  if (s.slip_fused) {
-    json->Set("slip.fused.precision", s.slip_fused->precision);
-    json->Set("slip.fused.recall", s.slip_fused->recall);
-    json->Set("slip.fused.events", s.slip_fused->detected_events);
-  }
+  const auto slip_keys = [json](const std::string& prefix, const SlipScore& score) {
+    json->Set(prefix + "precision", score.precision);
+    json->Set(prefix + "recall", score.recall);
+    json->Set(prefix + "events", score.detected_events);
+    json->Set(prefix + "truth_events", score.truth_events);
+    for (int b = 0; b < 3; ++b) {
+      json->Set(prefix + "recall_by_travel." + kTravelBandNames[b], score.recall_in_band(b));
+      json->Set(prefix + "truth_events_by_travel." + kTravelBandNames[b], score.band_events[b]);
+    }
+    json->Set(prefix + "latency_ms_median", score.latency_ms_median);
+    json->Set(prefix + "false_per_m", score.false_per_m);
+  };
+  slip_keys("slip.", s.slip);
+  if (s.slip_fused) slip_keys("slip.fused.", *s.slip_fused);
+  slip_keys("slip.gate.", s.slip_gate);
+  slip_keys("slip.oracle.", s.slip_oracle);
+  // The definitions the slip figures were scored with (the scenario's scoring block).
+  json->Set("slip.truth_travel_m", scoring.slip_travel_m);
+  json->Set("slip.contact_debounce_s", scoring.contact_debounce_s);
+  json->SetNumbers("slip.match_window_s", {-scoring.slip_match_before_s, scoring.slip_match_after_s});
+  json->Set("contact.accuracy", s.contact.accuracy);
+  json->Set("contact.samples", static_cast<int64_t>(s.contact.samples));
+  json->Set("contact.touchdown_err_ms_median", s.contact.touchdown_err_ms_median);
+  json->Set("contact.liftoff_err_ms_median", s.contact.liftoff_err_ms_median);
+  json->Set("contact.touchdowns", s.contact.touchdowns);
+  json->Set("contact.touchdowns_paired", s.contact.touchdowns_paired);
+  json->Set("contact.liftoffs", s.contact.liftoffs);
+  json->Set("contact.liftoffs_paired", s.contact.liftoffs_paired);
+  json->Set("grf.normal_rmse_n", s.contact.normal_rmse_n);
+  json->Set("grf.true_normal_mean_n", s.contact.true_normal_mean_n);
+  json->Set("grf.normal_rmse_pct", 100 * s.contact.normal_rmse_n / s.contact.true_normal_mean_n);
+  json->Set("grf.samples", static_cast<int64_t>(s.contact.force_samples));
   return s;
 }
 
 std::string LoSummaryLine(const LoSummary& s) {
-  char buf[320];
-  std::snprintf(buf, sizeof buf,
-                "LO: ATE %.4f m RMSE, drift %.2f%% of path, yaw drift %.1f deg; slip precision %.2f recall %.2f "
-                "(%d true events, %d detected); %.3f ms per IMU+encoder sample",
-                s.ate_rmse_m, s.drift_pct_path, s.yaw_drift_deg, s.slip.precision, s.slip.recall, s.slip.truth_events,
-                s.slip.detected_events, s.update_ms_mean);
+  char buf[560];
+  std::snprintf(buf, sizeof buf, "LO: ATE %.4f m RMSE, drift %.2f%% of path, yaw drift %.1f deg; %.3f ms per IMU+encoder sample\n",
+                s.ate_rmse_m, s.drift_pct_path, s.yaw_drift_deg, s.update_ms_mean);
   std::string line = buf;
+  std::snprintf(buf, sizeof buf,
+                "slip: precision %.2f recall %.2f (%d true events, %d detected), %.1f false per m, latency median %.0f ms; "
+                "contact %.1f%% of samples, touch-down %.1f ms; foot normal force RMSE %.2f N (%.0f%% of the mean)",
+                s.slip.precision, s.slip.recall, s.slip.truth_events, s.slip.detected_events, s.slip.false_per_m,
+                s.slip.latency_ms_median, 100 * s.contact.accuracy, s.contact.touchdown_err_ms_median,
+                s.contact.normal_rmse_n, 100 * s.contact.normal_rmse_n / s.contact.true_normal_mean_n);
+  line += buf;
+  std::snprintf(buf, sizeof buf,
+                "; the velocity gates' flags: precision %.2f recall %.2f (%d detected); on the true motion and contact "
+                "(oracle): precision %.2f recall %.2f (%d detected)",
+                s.slip_gate.precision, s.slip_gate.recall, s.slip_gate.detected_events, s.slip_oracle.precision,
+                s.slip_oracle.recall, s.slip_oracle.detected_events);
+  line += buf;
   if (s.slip_fused) {
     std::snprintf(buf, sizeof buf, "; fused with vision: slip precision %.2f recall %.2f (%d detected)",
                   s.slip_fused->precision, s.slip_fused->recall, s.slip_fused->detected_events);

@@ -13,6 +13,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "runner/foot_truth.h"
 #include "runner/lo_run.h"
 #include "runner/ordered_worker.h"
 #include "runner/overlay_video.h"
@@ -211,6 +212,17 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
     slam->SetFusion(fusion.get());
   }
   eval::Trajectory gt_cam;
+  // The feet's true contact and slip, every physics step (scored with the filter's, metrics only).
+  std::unique_ptr<FootTruth> foot_truth;
+  const auto step_foot_truth = [&foot_truth, &world](double dt_s) {
+    std::array<Eigen::Vector3d, kNumLegs> sole;
+    for (int i = 0; i < kNumLegs; ++i) sole[i] = world.FootSoleVelocityWorld(static_cast<Leg>(i));
+    foot_truth->Step(world.time_ns(), dt_s, world.FootContacts(), sole);
+  };
+  if (lo) {
+    foot_truth = std::make_unique<FootTruth>(s.scoring.slip_travel_m, s.scoring.contact_debounce_s);
+    step_foot_truth(0.0);
+  }
 
   std::unique_ptr<sim::EurocRecorder> recorder;
   if (opt.record) {
@@ -291,9 +303,13 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
         std::optional<ContactReading> contact;
         if (lo_touch || lo_schedule) contact = lo_touch ? *touch : planned;
         LoTruth truth;
-        truth.contact = js.contact;  // the encoder model passes the simulator's contacts through
+        truth.contact = foot_truth->contact();
+        truth.normal_force_n = world.FootNormalForces();
+        for (int i = 0; i < kNumLegs; ++i) truth.travel_m[i] = foot_truth->travel_m(i);
         const GroundTruthState gt = world.GroundTruth();
         truth.p_w_body = gt.T_w_body.p_w_x;
+        truth.q_w_body = gt.T_w_body.q_w_x;
+        truth.w_body = world.TrueGyro();
         truth.vel_w_body = gt.vel_w_body;
         truth.gyro_bias_i = sensors.imu.gyro_bias();
         for (int i = 0; i < kNumLegs; ++i) truth.sole_speed_mps[i] = world.FootSoleVelocityWorld(static_cast<Leg>(i)).norm();
@@ -400,6 +416,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
     // sample and frame so far is processed, and the outputs are finished as at the end.
     if ((stop_signal = StopSignal()) != 0 || observer_stop) break;
     rig.Step(steer_by_estimate ? steer_pose : rig.TruePose2());
+    if (foot_truth) step_foot_truth(s.physics_dt_s);
     progress.SetNote(track_note.load());
     progress.Update(world.data()->time);
   }
@@ -423,7 +440,7 @@ int RunScenario(const Scenario& s, const RunOptions& opt, RunObserver* observer)
   SlamSummary summary;
   if (slam) summary = slam->Finish(gt_cam, metrics.path_length_m, &json);
   LoSummary lo_summary;
-  if (lo) lo_summary = lo->Finish(gt_cam, metrics.path_length_m, &json);
+  if (lo) lo_summary = lo->Finish(gt_cam, metrics.path_length_m, foot_truth->Finish(world.time_ns()), s.scoring, &json);
   WriteFileAtomic(out + "/metrics.json", json.ToString());
 
   const int exit_code = metrics.fell && !s.robot.allow_fall ? 1 : 0;

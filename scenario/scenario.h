@@ -185,6 +185,22 @@ struct SlamConfig {                  // slam
   std::vector<std::string> settings_override_origins;
 };
 
+// scoring: how a run's estimates are judged against the simulator's truth (metrics only; no
+// estimate changes with them). Written into metrics.json with the figures they define.
+struct ScoringConfig {
+  // A true slip event is one stance of one foot whose sole's net horizontal displacement while in
+  // contact exceeds this (m): about 2.4x the normal floor's creep of 1.3 mm per stance, and above
+  // what the encoders resolve (1.5 mrad at the 0.1 m leg: 0.15 mm).
+  double slip_travel_m = 0.003;
+  // A foot's simulated contact changes only after it has held the new state this long (s): a
+  // sole that chatters on the ground for a step or two is one touch-down.
+  double contact_debounce_s = 0.003;
+  // A detection matches a true event of the same foot when its onset lies within
+  // [start - before, end + after] of the event (s).
+  double slip_match_before_s = 0.02;
+  double slip_match_after_s = 0.04;
+};
+
 struct Scenario {
   std::string source_file;           // the YAML the scenario came from (absolute)
   std::string name;
@@ -198,6 +214,7 @@ struct Scenario {
   TerrainConfig terrain;
   std::vector<Disturbance> disturbances;
   SlamConfig slam;
+  ScoringConfig scoring;
 };
 
 }  // namespace viqu

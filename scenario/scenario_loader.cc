@@ -389,7 +389,7 @@ void ReadSlam(YamlMapReader m, const fs::path& base_dir, SlamConfig* s) {
   for (const char* key : {"attitude_gain", "gyro_bias_gain", "gravity_gate_mps2", "attitude_accel_average_s",
                           "accel_noise", "stance_foot_noise", "swing_foot_noise", "kin_position_noise_m",
                           "kin_velocity_noise_mps", "velocity_window_s", "touchdown_s", "touchdown_inflation",
-                          "touchdown_inflation_vertical", "slip_gate_chi2", "slip_min_window_s", "slip_speed_mps",
+                          "touchdown_inflation_vertical", "slip_gate_chi2", "slip_min_window_s", "slip_speed_mps", "slip_travel_m", "slip_travel_from_s",
                           "yaw_bias_initial_std", "yaw_bias_walk", "yaw_pair_noise_m", "yaw_pair_min_s",
                           "yaw_pair_max_s", "yaw_pair_max_rate_radps",
                           "yaw_pair_gate_chi2", "contact_height_m", "fusion_min_inliers", "fusion_gyro_bias_s",
@@ -444,6 +444,12 @@ Scenario LoadScenario(const std::string& path, const std::vector<std::string>& o
   ReadTerrain(top.Map("terrain"), &s.terrain);
   ReadDisturbances(src, top.List("disturbances"), "disturbances", &s.disturbances);
   ReadSlam(top.Map("slam"), base_dir, &s.slam);
+  YamlMapReader scoring = top.Map("scoring");
+  scoring.Number("slip_travel_m", &s.scoring.slip_travel_m, NumberRange::OpenClosed(0, 1));
+  scoring.Number("contact_debounce_s", &s.scoring.contact_debounce_s, NumberRange::Closed(0, 0.1));
+  scoring.Number("slip_match_before_s", &s.scoring.slip_match_before_s, NumberRange::Closed(0, 1));
+  scoring.Number("slip_match_after_s", &s.scoring.slip_match_after_s, NumberRange::Closed(0, 1));
+  scoring.RejectUnknownKeys();
   top.RejectUnknownKeys();
   return s;
 }

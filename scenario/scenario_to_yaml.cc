@@ -229,6 +229,12 @@ std::string ScenarioToYaml(const Scenario& s) {
     out << YAML::EndSeq;
   }
   Slam(out, s.slam);
+  out << YAML::Key << "scoring" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  EmitNumber(out, "slip_travel_m", s.scoring.slip_travel_m);
+  EmitNumber(out, "contact_debounce_s", s.scoring.contact_debounce_s);
+  EmitNumber(out, "slip_match_before_s", s.scoring.slip_match_before_s);
+  EmitNumber(out, "slip_match_after_s", s.scoring.slip_match_after_s);
+  out << YAML::EndMap;
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

@@ -327,6 +327,10 @@ TEST_F(ConfigLoaderTest, SetMalformedOverrides) {
 
 // Every field of the scenario, compared one by one (source_file excepted).
 void ExpectSameScenario(const Scenario& a, const Scenario& b) {
+  EXPECT_EQ(a.scoring.slip_travel_m, b.scoring.slip_travel_m);
+  EXPECT_EQ(a.scoring.contact_debounce_s, b.scoring.contact_debounce_s);
+  EXPECT_EQ(a.scoring.slip_match_before_s, b.scoring.slip_match_before_s);
+  EXPECT_EQ(a.scoring.slip_match_after_s, b.scoring.slip_match_after_s);
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.seed, b.seed);
   EXPECT_EQ(a.duration_s, b.duration_s);
@@ -452,8 +456,11 @@ TEST_F(ConfigLoaderTest, ScenarioToYamlRoundTrip) {
       "slam:\n"
       "  mode: visual_dynamic\n"
       "  config: cfg/slam.yaml\n"
-      "  dynamic: {method: paper, alpha: 1.1, beta: 0.9, gamma: 0.4, th_d: 0.12, window_s: 5.5, window_n: 12}\n");
+      "  dynamic: {method: paper, alpha: 1.1, beta: 0.9, gamma: 0.4, th_d: 0.12, window_s: 5.5, window_n: 12}\n"
+      "scoring: {slip_travel_m: 0.0045, contact_debounce_s: 0.002, slip_match_before_s: 0.01, slip_match_after_s: 0.05}\n");
   const Scenario first = LoadScenario(path, {"obstacles.1.speed_mps=0.1"});
+  EXPECT_EQ(first.scoring.slip_travel_m, 0.0045);
+  EXPECT_EQ(first.scoring.slip_match_after_s, 0.05);
   const std::string yaml = ScenarioToYaml(first);
   // Written elsewhere: the paths inside are absolute, so the file loads from any folder.
   const std::string copy = Write("elsewhere/resolved.yaml", yaml);

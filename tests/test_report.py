@@ -272,7 +272,56 @@ class RunReport(unittest.TestCase):
                       "(the error needs the ground truth)", err)
         self.assertIn("no trajectory_gt.txt (a replay of a dataset without ground truth?): trajectory_top.png "
                       "leaves out the ground truth", err)
-        self.assertEqual(sorted(os.listdir(os.path.join(run, "plots"))), ["dynamic_timeline.png", "trajectory_top.png"])
+        self.assertEqual(sorted(os.listdir(os.path.join(run, "plots"))),
+                         ["dynamic_timeline.png", "feet_timeline.png", "trajectory_top.png"])
+
+    def test_feet_timeline_draws_the_files(self):
+        # The stored run's contact spans and slip events, bar for bar: a synthetic slip.csv with one
+        # true event and one detection of FR, and FL's estimated contact turned off over 1.0-1.5 s.
+        with open(os.path.join(self.run, "lo.csv")) as f:
+            rows = list(csv.DictReader(f))
+        header = list(rows[0].keys())
+        for r in rows:
+            if 1.0 <= float(r["t_s"]) < 1.5:
+                r["FL_contact"] = "0"
+        text = io.StringIO()
+        w = csv.DictWriter(text, fieldnames=header, lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)
+        rewrite(self.run, "lo.csv", text.getvalue())
+        rewrite(self.run, "slip.csv", "kind,leg,start_s,end_s,crossed_s,size,matched\n"
+                                      "truth,FR,2.000,2.200,2.050,0.004,1\n"
+                                      "detected,FR,2.060,2.100,,0.0035,1\n")
+        fig = report.plot_feet_timeline(self.run)
+        ax = fig.axes[0]
+        bars = {c.get_gid(): c for c in ax.collections}
+        self.assertEqual(len(bars), 16)  # four series of four feet
+        self.assertEqual(len(bars["FL_true_slip"].get_paths()), 0)
+        truth = bars["FR_true_slip"].get_paths()
+        self.assertEqual(len(truth), 1)
+        x0, x1 = truth[0].vertices[:, 0].min(), truth[0].vertices[:, 0].max()
+        self.assertAlmostEqual(x0, 2.0)
+        self.assertAlmostEqual(x1, 2.2)
+        y = truth[0].vertices[:, 1].min()
+        self.assertAlmostEqual(y, 2 + 0.02)  # FR is the second row from the top (y = 2)
+        found = bars["FR_slip"].get_paths()
+        self.assertAlmostEqual(found[0].vertices[:, 0].min(), 2.06)
+        # FL's estimated contact has a gap over 1.0-1.5 s: no span covers 1.2 s on its row (y = 3).
+        spans_fl = bars["FL_contact"].get_paths()
+        self.assertAlmostEqual(spans_fl[0].vertices[:, 1].min(), 3 - 0.2)
+        self.assertTrue(spans_fl)
+        self.assertFalse(any(p.vertices[:, 0].min() <= 1.2 <= p.vertices[:, 0].max() for p in spans_fl))
+        # lo.csv of an older viqu (no stance truth): the plot is left out, and said so.
+        old = [c for c in header if not c.endswith(("_true_travel", "_normal_n", "_travel", "_slipped"))]
+        text = io.StringIO()
+        w = csv.DictWriter(text, fieldnames=old, lineterminator="\n", extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+        rewrite(self.run, "lo.csv", text.getvalue())
+        rc, out, err = report_py(self.run)
+        self.assertEqual(rc, 0, err)
+        self.assertIn("lo.csv and slip.csv are of an older viqu (no stance truth): no feet_timeline.png", err)
+        self.assertNotIn("feet_timeline.png", os.listdir(os.path.join(self.run, "plots")))
 
     def test_legend_clear_of_the_plot(self):
         # The legend lies outside the axes (where the obstacles' names are drawn), within the figure.

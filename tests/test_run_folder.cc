@@ -105,6 +105,23 @@ TEST(RunFolder, ARerunReplacesTheWholeFolderAndAFailedOneKeepsTheOld) {
   EXPECT_EQ(Debris(root), 0);
 }
 
+// A real run's folder (the stored one of a `full` run, tests/data/report_run) is replaced by a
+// rerun without --force: every file a run writes is one the writer knows as its own.
+TEST(RunFolder, ARealRunsFolderIsReplacedWithoutForce) {
+  const fs::path root = Fresh("real");
+  const fs::path dir = root / "run";
+  fs::copy(fs::path(VIQU_SOURCE_DIR) / "tests" / "data" / "report_run", dir, fs::copy_options::recursive);
+  ASSERT_TRUE(fs::exists(dir / "contact.csv"));
+  ASSERT_TRUE(IsCompleteRunFolder(dir.string()));
+  {
+    RunFolderWriter w(dir.string(), false, "rerun");
+    WriteText(fs::path(w.path()) / "metrics.json", "{\"rerun\": 1}\n");
+    w.Complete(0);
+  }
+  EXPECT_FALSE(fs::exists(dir / "contact.csv"));
+  EXPECT_EQ(ReadText(dir / "metrics.json"), "{\"rerun\": 1}\n");
+}
+
 TEST(RunFolder, InterruptedFolderIsRefusedWithItsReason) {
   const fs::path root = Fresh("interrupted");
   const std::string dir = (root / "run").string();

@@ -65,7 +65,7 @@ TEST(Determinism, OverlappedStagesGiveTheSequentialLoopsBytes) {
   const fs::path seq = RunInto(s, "seq", true, true);
   const fs::path ovl = RunInto(s, "ovl", true, false);
   for (const char* f : {"trajectory_gt.txt", "trajectory_est.txt", "trajectory_lo.txt", "lo.csv", "dynamic.csv",
-                        "slip.csv", "dataset/mav0/imu0/data.csv", "dataset/mav0/cam0/data.csv"}) {
+                        "slip.csv", "contact.csv", "dataset/mav0/imu0/data.csv", "dataset/mav0/cam0/data.csv"}) {
     const std::string a = ReadAll(seq / f);
     EXPECT_FALSE(a.empty()) << f;
     EXPECT_EQ(a, ReadAll(ovl / f)) << f;

@@ -4,11 +4,11 @@
 //    filter and resumes, `visual` dead-reckons on its last velocity.
 //  - static_room steered by the fused estimate (robot.command.follow: estimate) closes its 2 m
 //    square as it does steered by ground truth.
-//  - slippery_patch: the robot walks onto ice and treads in place; the slip gate must flag the
-//    stance feet that slide, and hardly any that do not.
+//  - slippery_patch: the robot walks onto ice and treads in place; the slip decision must report
+//    the stances whose feet slide, and hardly any that do not.
 //  - blank_wall: a plain board fills the view; `full` carries the pose where vision loses it.
 //  - ice_patches: three strips of ice across the path; short skids at touch-down, the slip
-//    gate's hard case (its targets are missed there: the bounds hold today's figures).
+//    decision's hard case (its targets are missed there: the bounds hold today's figures).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -107,22 +107,23 @@ TEST(LegOdometryScenario, SlipperyPatchFlagsSlidingFeet) {
               slip["precision"].as<double>(), slip["recall"].as<double>(), slip["truth_events"].as<int>(),
               slip["events"].as<int>(), r.metrics["lo"]["ate"]["rmse_m"].as<double>(),
               r.metrics["lo"]["drift_pct_path"].as<double>(), r.metrics["ate"]["rmse_m"].as<double>());
-  // Measured (session 17, with the speed gate): precision 0.93, recall 0.86 over 1038 true events
-  // (the chi-square gate alone: 0.99 and 0.73). Bounds at about twice the misses, and above the
-  // chi-square gate's recall, so that losing the speed gate fails here.
+  // Scored by issue 55's definitions (docs/LEG_ODOMETRY.md), measured 2026-12-07: 859 true
+  // events (stances whose sole travelled over 3 mm); the slip decision 0.91 / 0.83 (781
+  // detected), the velocity gates' flags 0.82 / 0.86, the oracle 1.00 / 0.93. Bounds at about
+  // twice the misses.
   EXPECT_GE(slip["truth_events"].as<int>(), 500);
-  EXPECT_GE(slip["precision"].as<double>(), 0.85);
-  EXPECT_GE(slip["recall"].as<double>(), 0.75);
+  EXPECT_GE(slip["precision"].as<double>(), 0.82);
+  EXPECT_GE(slip["recall"].as<double>(), 0.66);
   // slip.csv lists every event of both kinds.
   EXPECT_EQ(Lines(r.dir / "slip.csv") - 1, slip["truth_events"].as<int>() + slip["events"].as<int>());
-  // The filter fused with vision judges the feet by the same gates (slip.fused.*): measured
-  // precision 0.95, recall 0.83 (chi-square gate alone 0.99 and 0.66); vision bounds its error
-  // but does not make it see feet that slide together (test_leg_odometry).
+  // The filter fused with vision makes the same decision on its own feet (slip.fused.*): measured
+  // 0.91 / 0.83; vision bounds its error but does not make it see feet that slide together
+  // (test_leg_odometry).
   const YAML::Node& fused = slip["fused"];
   std::printf("slippery_patch, the filter fused with vision: slip precision %.3f recall %.3f (%d detected)\n",
               fused["precision"].as<double>(), fused["recall"].as<double>(), fused["events"].as<int>());
-  EXPECT_GE(fused["precision"].as<double>(), 0.9);
-  EXPECT_GE(fused["recall"].as<double>(), 0.7);
+  EXPECT_GE(fused["precision"].as<double>(), 0.82);
+  EXPECT_GE(fused["recall"].as<double>(), 0.66);
   // Vision is unaffected by the ice: measured 0.43 mm (9.5 mm when this test was written).
   EXPECT_LT(r.metrics["ate"]["rmse_m"].as<double>(), 0.02);
 }
@@ -203,17 +204,33 @@ TEST(LegOdometryScenario, IcePatchesSkidsAreFlaggedAndFusionStaysBelowVision) {
   const YAML::Node& slip = full.metrics["slip"];
   const double drift = full.metrics["lo"]["drift_pct_path"].as<double>();
   const double drift_ungated = ungated.metrics["lo"]["drift_pct_path"].as<double>();
-  std::printf("ice_patches: ATE full %.4f m, visual %.4f m (%.3fx); slip precision %.3f recall %.3f (%d true events, "
-              "%d detected); LO drift %.2f%%, gates off %.2f%% (%.3fx)\n",
+  const YAML::Node& gate = slip["gate"];
+  std::printf("ice_patches: ATE full %.4f m, visual %.4f m (%.3fx); slip by travel precision %.3f recall %.3f (%d true "
+              "events, %d detected, %.2f false per m); the gates' flags %.3f / %.3f (%d, %.1f per m); oracle %.3f / "
+              "%.3f; contact %.3f; normal force RMSE %.2f N; LO drift %.2f%%, gates off %.2f%% (%.3fx)\n",
               ate_full, ate_visual, ate_full / ate_visual, slip["precision"].as<double>(), slip["recall"].as<double>(),
-              slip["truth_events"].as<int>(), slip["events"].as<int>(), drift, drift_ungated, drift / drift_ungated);
-  // Measured (session 26): 88 true events, 306 detected; precision 0.23, recall 0.55.
-  EXPECT_GE(slip["truth_events"].as<int>(), 44);
-  EXPECT_GE(slip["precision"].as<double>(), 0.12);
+              slip["truth_events"].as<int>(), slip["events"].as<int>(), slip["false_per_m"].as<double>(),
+              gate["precision"].as<double>(), gate["recall"].as<double>(), gate["events"].as<int>(),
+              gate["false_per_m"].as<double>(), slip["oracle"]["precision"].as<double>(),
+              slip["oracle"]["recall"].as<double>(), full.metrics["contact"]["accuracy"].as<double>(),
+              full.metrics["grf"]["normal_rmse_n"].as<double>(), drift, drift_ungated, drift / drift_ungated);
+  // Scored by issue 55's definitions (a stance whose sole travels over 3 mm; one-to-one matching;
+  // docs/leg_odometry.md), measured 2026-12-07: 21 true events; the slip by travel 0.80 / 0.57
+  // (15 detected, 1.0 false per m), the velocity gates' flags 0.09 / 0.86 (199 detected, 62.9 per
+  // m), the oracle 0.64 / 0.76; contact 0.966 of samples; normal force RMSE 1.30 N. Bounds at
+  // about twice the misses (precision, contact) or twice the figure (false per m, force), and the
+  // reported decision well above the gates' precision, so that scoring the gates again fails here.
+  EXPECT_GE(slip["truth_events"].as<int>(), 10);
+  EXPECT_GE(slip["precision"].as<double>(), 0.6);
   EXPECT_GE(slip["recall"].as<double>(), 0.3);
-  // With both gates off nothing is flagged, and the filter drifts no less: measured 1.78% gated
-  // against 1.90% (0.94x; the issue's target is 0.6x).
-  EXPECT_EQ(ungated.metrics["slip"]["events"].as<int>(), 0);
+  EXPECT_LE(slip["false_per_m"].as<double>(), 2.0);
+  EXPECT_GT(slip["precision"].as<double>(), 3 * gate["precision"].as<double>());
+  EXPECT_GE(full.metrics["contact"]["accuracy"].as<double>(), 0.93);
+  EXPECT_LE(full.metrics["grf"]["normal_rmse_n"].as<double>(), 2.6);
+  // With both gates off they flag nothing, and the filter drifts no less: measured 1.78% gated
+  // against 1.90% (0.94x; the issue's target is 0.6x). The slip by travel reports, it does not
+  // gate: the same with the gates off.
+  EXPECT_EQ(ungated.metrics["slip"]["gate"]["events"].as<int>(), 0);
   EXPECT_LT(drift, 3.6);
   EXPECT_LE(drift, 1.05 * drift_ungated);
   // Measured 2.2 mm (full) against 2.7 mm (visual), 0.81x, until session 33; 3.1 against 2.4 mm

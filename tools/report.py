@@ -396,6 +396,59 @@ def plot_dynamic_timeline(run_dir):
     return fig
 
 
+LEGS = ("FL", "FR", "BL", "BR")
+
+
+def feet_timeline_inputs(run_dir):
+    """lo.csv and slip.csv as the feet timeline needs them, or None with why not (a run before
+    issue 55's scoring has neither the debounced truth nor slip.csv's crossed_s)."""
+    lo_path, slip_path = os.path.join(run_dir, "lo.csv"), os.path.join(run_dir, "slip.csv")
+    if not os.path.exists(lo_path) or not os.path.exists(slip_path):
+        return None, "no lo.csv or slip.csv (leg odometry runs live with SLAM in slam.mode full only)"
+    with open(lo_path) as f:
+        header = f.readline().strip().split(",")
+    with open(slip_path) as f:
+        slip_header = f.readline().strip().split(",")
+    if "FL_true_travel" not in header or "crossed_s" not in slip_header:
+        return None, "lo.csv and slip.csv are of an older viqu (no stance truth)"
+    return (lo_path, slip_path), None
+
+
+def plot_feet_timeline(run_dir):
+    """Per foot: its true (debounced) contact and the estimator's, the true slip events (a stance
+    whose sole travelled over the scoring threshold) and the reported detections."""
+    (lo_path, slip_path), _ = feet_timeline_inputs(run_dir)
+    numeric = ["t_s"] + [f"{leg}_{c}" for leg in LEGS for c in ("contact", "true_contact")]
+    rows = read_csv(lo_path, numeric=numeric)
+    events = read_csv(slip_path, numeric=("start_s", "end_s"))
+    ts = [float(r["t_s"]) for r in rows]
+    period = (ts[1] - ts[0]) if len(ts) > 1 else 0.005
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI)
+    for k, leg in enumerate(LEGS):
+        y = 3 - k  # FL on top
+        true_c = [r[f"{leg}_true_contact"] == "1" for r in rows]
+        est_c = [r[f"{leg}_contact"] == "1" for r in rows]
+        ax.broken_barh(spans(ts, true_c, period), (y - 0.4, 0.18), color="0.6",
+                       label="true contact" if k == 0 else None, gid=f"{leg}_true_contact")
+        ax.broken_barh(spans(ts, est_c, period), (y - 0.2, 0.18), color="tab:blue", alpha=0.5,
+                       label="estimated contact" if k == 0 else None, gid=f"{leg}_contact")
+        mine = [e for e in events if e["leg"] == leg]
+        truth = [(float(e["start_s"]), float(e["end_s"]) - float(e["start_s"])) for e in mine if e["kind"] == "truth"]
+        found = [(float(e["start_s"]), float(e["end_s"]) - float(e["start_s"])) for e in mine if e["kind"] == "detected"]
+        ax.broken_barh(truth, (y + 0.02, 0.18), color="tab:orange", label="true slip (stance)" if k == 0 else None,
+                       gid=f"{leg}_true_slip")
+        ax.broken_barh(found, (y + 0.22, 0.18), color="tab:red", label="slip detected" if k == 0 else None,
+                       gid=f"{leg}_slip")
+    ax.set_yticks(range(4))
+    ax.set_yticklabels(list(reversed(LEGS)))
+    ax.set_xlabel("time (s)")
+    ax.set_title("feet: contact (grey true, blue estimated) and slip (orange true, red detected)")
+    ax.grid(True, axis="x", alpha=0.3)
+    ax.legend(loc="upper right", fontsize=7, ncol=4)
+    fig.tight_layout()
+    return fig
+
+
 def left_out(run_dir):
     """Warning lines for what a complete folder lacks: each plot or series left out, and why."""
     def have(name):
@@ -420,6 +473,10 @@ def left_out(run_dir):
                      f"{where} out the leg odometry")
     if not have("scenario.yaml"):
         notes.append("no scenario.yaml (a replay?): trajectory_top.png leaves out the obstacles' paths")
+    if lo:
+        _, why = feet_timeline_inputs(run_dir)
+        if why:
+            notes.append(f"{why}: no feet_timeline.png")
     if not have("dynamic.csv"):
         notes.append("no dynamic.csv (a --no-slam run?): no dynamic_timeline.png")
     elif not read_csv(os.path.join(run_dir, "dynamic.csv")):
@@ -434,6 +491,8 @@ def report_run(run_dir):
         plots.append(("error_time.png", plot_error_time))
     if read_csv(os.path.join(run_dir, "dynamic.csv")):
         plots.append(("dynamic_timeline.png", plot_dynamic_timeline))
+    if feet_timeline_inputs(run_dir)[0]:
+        plots.append(("feet_timeline.png", plot_feet_timeline))
     for note in left_out(run_dir):
         warn(run_dir, note)
     figures = []

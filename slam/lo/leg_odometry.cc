@@ -75,7 +75,8 @@ void LegOdometry::Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body) {
   feet_placed_ = false;
   window_.clear();
   roll_w_.fill(Eigen::Vector3d::Zero());
-  for (FootStatus& f : feet_) f = FootStatus{true, false, 0, t_ns};
+  for (FootStatus& f : feet_) f = FootStatus{true, false, 0, t_ns, 0, false, Eigen::Vector3d::Zero()};
+  settled_at_w_.fill(std::nullopt);
   yaw_bias_.Reset(t_ns);
   gravity_tilt_.Reset();
   levellings_ = 0;
@@ -286,6 +287,27 @@ void LegOdometry::AddJoints(const JointState& js) {
     else rolled_w_[i] += roll_w_[i] * reading_dt;
     holds[i] = f.contact && !f.slipping && js.t_ns - f.touchdown_ns >= touchdown_ns;
     contact_w[i] = rel_w[i] - rolled_w_[i];
+  }
+  // The slip by travel: each stance foot's contact point against the body's predicted travel
+  // since lo.slip_travel_from_s after its touch-down (the filter's velocity integrated: it follows
+  // the feet the gates let in).
+  const int64_t travel_from_ns = std::llround(settings_.slip_travel_from_s * 1e9);
+  for (int i = 0; i < kNumLegs; ++i) {
+    FootStatus& f = feet_[i];
+    f.contact_ref_w = travel_w_ + contact_w[i];
+    if (!f.contact || js.t_ns - f.touchdown_ns < travel_from_ns) {
+      settled_at_w_[i].reset();
+      f.travel_m = 0;
+      if (!f.contact) f.slipped = false;
+      continue;
+    }
+    const Eigen::Vector3d& at_w = f.contact_ref_w;
+    if (!settled_at_w_[i]) {
+      settled_at_w_[i] = at_w;
+      f.slipped = false;
+    }
+    f.travel_m = (at_w - *settled_at_w_[i]).head<2>().norm();
+    f.slipped = f.slipped || f.travel_m > settings_.slip_travel_m;
   }
   const double yaw_rate = (R * w_b).z();
   if (const std::optional<double> db = yaw_bias_.Add(js.t_ns, holds, contact_w, yaw_rate)) {

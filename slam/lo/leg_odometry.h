@@ -34,6 +34,14 @@ struct FootStatus {
   bool slipping = false;         // in contact, but its velocity failed a slip gate (chi-square or speed)
   double mahalanobis2 = 0;       // squared Mahalanobis distance of its velocity innovation (0 in swing and settling)
   int64_t touchdown_ns = 0;      // time of its last touch-down (ns)
+  // The reported slip decision (lo.slip_travel_m): the horizontal travel of its contact point since
+  // lo.slip_travel_from_s after its touch-down, against the body's predicted travel (m, 0 before), and
+  // whether it has exceeded the threshold in this stance (held until lift-off).
+  double travel_m = 0;
+  bool slipped = false;
+  // Its contact point by the body's predicted travel: the filter's velocity integrated plus the
+  // contact point relative to the body (m, world; any origin: only its changes in a stance count).
+  Eigen::Vector3d contact_ref_w = Eigen::Vector3d::Zero();
 };
 
 class LegOdometry {
@@ -134,6 +142,9 @@ class LegOdometry {
   // Rolling displacement of each foot's centre since its touch-down (m, world): the contact
   // point is the centre less it.
   std::array<Eigen::Vector3d, kNumLegs> rolled_w_{};
+  // Where each stance foot's contact point was lo.slip_travel_from_s after touch-down, by the body's predicted
+  // travel (travel_w_ + contact point relative to the body; m, world), for the slip by travel.
+  std::array<std::optional<Eigen::Vector3d>, kNumLegs> settled_at_w_{};
   std::optional<int64_t> last_joints_ns_;
   double update_ms_sum_ = 0;
   long updates_ = 0;

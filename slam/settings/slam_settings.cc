@@ -203,6 +203,8 @@ void ReadLegOdometry(YamlMapReader* m, LegOdometrySettings* lo) {
   m->Bool("fusion_hold_gravity", &lo->fusion_hold_gravity);
   m->Number("fusion_gyro_bias_s", &lo->fusion_gyro_bias_s, NumberRange::Closed(0, 1e6));
   m->Number("slip_speed_mps", &lo->slip_speed_mps, NumberRange::Positive());
+  m->Number("slip_travel_m", &lo->slip_travel_m, NumberRange::Positive());
+  m->Number("slip_travel_from_s", &lo->slip_travel_from_s, NumberRange::NonNegative());
   m->Number("yaw_bias_initial_std", &lo->yaw_bias_initial_std, NumberRange::NonNegative());
   m->Number("yaw_bias_walk", &lo->yaw_bias_walk, NumberRange::NonNegative());
   m->Number("yaw_pair_noise_m", &lo->yaw_pair_noise_m, NumberRange::Positive());
@@ -421,6 +423,8 @@ std::string SlamSettingsToYaml(const SlamSettings& s) {
   EmitBool(out, "fusion_hold_gravity", lo.fusion_hold_gravity);
   EmitNumber(out, "fusion_gyro_bias_s", lo.fusion_gyro_bias_s);
   EmitNumber(out, "slip_speed_mps", lo.slip_speed_mps);
+  EmitNumber(out, "slip_travel_m", lo.slip_travel_m);
+  EmitNumber(out, "slip_travel_from_s", lo.slip_travel_from_s);
   EmitNumber(out, "yaw_bias_initial_std", lo.yaw_bias_initial_std);
   EmitNumber(out, "yaw_bias_walk", lo.yaw_bias_walk);
   EmitNumber(out, "yaw_pair_noise_m", lo.yaw_pair_noise_m);

@@ -183,6 +183,12 @@ struct LegOdometrySettings {
   // over a whole velocity window is slipping, whatever the filter's own uncertainty, while another
   // stance foot agrees with the filter (m/s).
   double slip_speed_mps = 0.05;
+  // Slip, by travel (the reported slip decision; the filter's gates above are unchanged by it): a
+  // settled stance foot whose contact point has moved more than this horizontally since it
+  // settled, against the body's travel by the filter's predictions, slipped in this stance (m).
+  double slip_travel_m = 0.003;
+  // The travel is counted from this long after the foot's touch-down (s).
+  double slip_travel_from_s = 0.0;
   // The filter's velocity the slip gates compare a foot with, over the foot's window: position
   // (the change of the filter's position) | prediction (the body's travel by the filter's
   // predictions alone, without the jumps its measurement updates make in the position).
