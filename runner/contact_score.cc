@@ -18,21 +18,25 @@ double Median(std::vector<double> v) {
 
 }  // namespace
 
-void ContactScorer::Add(int64_t t_ns, const std::array<bool, kNumLegs>& estimated, const std::array<bool, kNumLegs>& truth,
-                        const std::array<double, kNumLegs>& est_normal_n, const std::array<double, kNumLegs>& true_normal_n) {
+void ContactScorer::Add(int64_t t_ns, const std::array<bool, kNumLegs>& estimated, const std::array<bool, kNumLegs>& truth) {
   for (int i = 0; i < kNumLegs; ++i) {
     ++samples_;
     agree_ += estimated[i] == truth[i];
     if (have_last_ && estimated[i] != last_[i]) estimated_.push_back(Transition{i, estimated[i], t_ns});
-    if (truth[i] && std::isfinite(est_normal_n[i])) {
-      const double e = est_normal_n[i] - true_normal_n[i];
-      force_sq_ += e * e;
-      force_sum_ += true_normal_n[i];
-      ++force_samples_;
-    }
   }
   last_ = estimated;
   have_last_ = true;
+}
+
+void ContactScorer::AddForce(const std::array<double, kNumLegs>& est_normal_n, const std::array<bool, kNumLegs>& truth,
+                             const std::array<double, kNumLegs>& true_normal_n) {
+  for (int i = 0; i < kNumLegs; ++i) {
+    if (!truth[i] || !std::isfinite(est_normal_n[i])) continue;
+    const double e = est_normal_n[i] - true_normal_n[i];
+    force_sq_ += e * e;
+    force_sum_ += true_normal_n[i];
+    ++force_samples_;
+  }
 }
 
 ContactScore ContactScorer::Finish(const std::vector<TrueStance>& stances, std::string* csv) {

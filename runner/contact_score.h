@@ -33,10 +33,12 @@ struct ContactScore {
 
 class ContactScorer {
  public:
-  // One encoder sample: the estimator's contact, the true (debounced) contact, the estimated
-  // normal force (NaN where there is none) and the simulator's.
-  void Add(int64_t t_ns, const std::array<bool, kNumLegs>& estimated, const std::array<bool, kNumLegs>& truth,
-           const std::array<double, kNumLegs>& est_normal_n, const std::array<double, kNumLegs>& true_normal_n);
+  // One encoder sample: the estimator's contact and the true (debounced) contact.
+  void Add(int64_t t_ns, const std::array<bool, kNumLegs>& estimated, const std::array<bool, kNumLegs>& truth);
+  // One foot-force estimate (NaN where there is none) with the truth at its instant: the true
+  // contact and the simulator's normal force. Scored where the foot is truly in contact.
+  void AddForce(const std::array<double, kNumLegs>& est_normal_n, const std::array<bool, kNumLegs>& truth,
+                const std::array<double, kNumLegs>& true_normal_n);
 
   // Scores against the true stances (FootTruth::Finish): those the run began or ended in have no
   // true touch-down or lift-off there. `csv` gets contact.csv.

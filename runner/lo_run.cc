@@ -17,7 +17,7 @@ LoRun::LoRun(const slam::LegOdometrySettings& settings, const kin::LegKinematics
       writer_(out_dir + "/trajectory_lo.txt"),
       log_(std::make_unique<AtomicOutputFile>(out_dir + "/lo.csv")),
       oracle_(kin, settings.slip_travel_m),
-      forces_(kin) {
+      forces_(kin, lo::FootForceModel{}, lo::ForceAlignment::kCentred) {
   lo_.Start(t0_ns, T_w_body0);
   std::string header = "t_s,x,y,z,vx,vy,vz,true_x,true_y,true_z,true_vx,true_vy,true_vz";
   for (int i = 0; i < kNumLegs; ++i) {
@@ -67,7 +67,15 @@ void LoRun::AddJoints(const JointState& js, int64_t period_ns, const LoTruth& tr
   detected_events_.Add(js.t_ns, period_ns, contact, detected, travel);
   gate_events_.Add(js.t_ns, period_ns, contact, gated, m2);
   oracle_events_.Add(js.t_ns, period_ns, truth.contact, oracle_.slipped(), oracle_.travel_m());
-  contact_score_.Add(js.t_ns, contact, truth.contact, est_normal, truth.normal_force_n);
+  contact_score_.Add(js.t_ns, contact, truth.contact);
+  if (f.t_ns == js.t_ns) {
+    contact_score_.AddForce(est_normal, truth.contact, truth.normal_force_n);
+  } else if (f.t_ns == last_truth_ns_) {
+    contact_score_.AddForce(est_normal, last_true_contact_, last_true_normal_n_);
+  }
+  last_truth_ns_ = js.t_ns;
+  last_true_contact_ = truth.contact;
+  last_true_normal_n_ = truth.normal_force_n;
   if (fused_) {
     for (int i = 0; i < kNumLegs; ++i) {
       contact[i] = fused_->feet()[i].contact;

@@ -4,8 +4,9 @@
 // frame, like trajectory_est.txt), scores its slip decisions, contact and foot forces against the
 // simulator's truth (slip.csv, contact.csv; runner/slip_score.h, runner/contact_score.h), logs
 // every encoder sample to lo.csv (estimate, truth, and per foot the contact, the gates' flag and
-// statistic, the true contact, sole speed and stance travel, the estimated and true normal force,
-// the estimated stance travel and the slip decision) and adds the lo.*, slip.*, contact.* and grf.* keys to metrics.json.
+// statistic, the true contact, sole speed and stance travel, the estimated normal force (of the
+// reading before: centred, slam/lo/foot_force.h) and the true one, the estimated stance travel and
+// the slip decision) and adds the lo.*, slip.*, contact.* and grf.* keys to metrics.json.
 #include <array>
 #include <memory>
 #include <optional>
@@ -87,6 +88,10 @@ class LoRun {
   SlipDetectionBuilder fused_events_;
   lo::FootForceEstimator forces_;  // foot forces from the torques, scored against the simulator's
   ContactScorer contact_score_;
+  // The truth at the previous encoder reading, for a force estimate dated there (centred).
+  int64_t last_truth_ns_ = -1;
+  std::array<bool, kNumLegs> last_true_contact_{};
+  std::array<double, kNumLegs> last_true_normal_n_{};
   Eigen::Vector3d true_gyro_bias_i_ = Eigen::Vector3d::Zero();  // at the last encoder reading
 };
 

@@ -226,7 +226,7 @@ TEST(LegOdometryScenario, IcePatchesSkidsAreFlaggedAndFusionStaysBelowVision) {
   EXPECT_LE(slip["false_per_m"].as<double>(), 2.0);
   EXPECT_GT(slip["precision"].as<double>(), 3 * gate["precision"].as<double>());
   EXPECT_GE(full.metrics["contact"]["accuracy"].as<double>(), 0.93);
-  EXPECT_LE(full.metrics["grf"]["normal_rmse_n"].as<double>(), 2.6);
+  EXPECT_LE(full.metrics["grf"]["normal_rmse_n"].as<double>(), 1.6);
   // With both gates off they flag nothing, and the filter drifts no less: measured 1.78% gated
   // against 1.90% (0.94x; the target is 0.6x). The slip by travel reports, it does not
   // gate: the same with the gates off.

@@ -195,7 +195,8 @@ TEST(ContactScore, AccuracyTransitionsAndForce) {
       true_n[0] = 2.0;
       est_n[0] = t < 100 * kMs ? 2.3 : nan;
     }
-    scorer.Add(t, est, truth, est_n, true_n);
+    scorer.Add(t, est, truth);
+    scorer.AddForce(est_n, truth, true_n);
   }
   std::string csv;
   const runner::ContactScore s = scorer.Finish(stances, &csv);

@@ -215,6 +215,44 @@ TEST(FootForce, TheTransposedJacobianGivesTheHandWorkedForce) {
   EXPECT_FALSE(held.Update(js, Eigen::Vector3d::Zero()).valid[1]);
 }
 
+// Centred alignment: the estimate belongs to the previous reading (its angle and torque, the mean
+// of the two velocities, their difference as qdd). Hand-worked in the pose above, no gravity: the
+// knee's velocity steps from 1 to 3 rad/s over 5 ms (qdd 400 rad/s^2, mean velocity 2 rad/s), the
+// previous reading's torques -0.1 N m, the newest's -0.3 (ignored). The knee's balance gains
+// a qdd + b qd = 0.0002 x 400 + 0.03 x 2 = 0.14 N m, the hip's nothing (still): J^T F =
+// (0.1, 0.24), solved here with the Jacobian of the pose.
+TEST(FootForce, TheCentredEstimateBelongsToThePreviousReading) {
+  const kin::LegKinematics kin = RatKinematics();
+  lo::FootForceEstimator est(kin, lo::FootForceModel{}, lo::ForceAlignment::kCentred);
+  JointState a, b;
+  a.t_ns = 1'000'000'000;
+  b.t_ns = a.t_ns + 5'000'000;
+  a.has_torque = b.has_torque = true;
+  for (int i = 0; i < kNumLegs; ++i) {
+    a.position_rad[2 * i] = b.position_rad[2 * i] = 0;
+    a.position_rad[2 * i + 1] = M_PI / 2;
+    b.position_rad[2 * i + 1] = M_PI / 2 + 0.01;  // ignored: the estimate is about a's angles
+    a.velocity_rad_s[2 * i + 1] = 1.0;
+    b.velocity_rad_s[2 * i + 1] = 3.0;
+    a.torque_nm[2 * i] = a.torque_nm[2 * i + 1] = -0.1;
+    b.torque_nm[2 * i] = b.torque_nm[2 * i + 1] = -0.3;
+  }
+  const lo::FootForces first = est.Update(a, Eigen::Vector3d::Zero());
+  EXPECT_FALSE(first.valid[0]);  // nothing before a second reading
+  const lo::FootForces f = est.Update(b, Eigen::Vector3d::Zero());
+  EXPECT_EQ(f.t_ns, a.t_ns);
+  const Eigen::Matrix<double, 3, 2> J = kin.FootJacobian(Leg::kFL, 0, M_PI / 2);
+  Eigen::Matrix2d Js;
+  Js.row(0) = J.row(0);
+  Js.row(1) = J.row(2);
+  const Eigen::Vector2d expected = Js.transpose().inverse() * Eigen::Vector2d(0.1, 0.1 + 0.0002 * 400 + 0.03 * 2);
+  for (int i = 0; i < kNumLegs; ++i) {
+    ASSERT_TRUE(f.valid[i]) << i;
+    EXPECT_NEAR(f.f_trunk[i].x(), expected.x(), 1e-9) << i;
+    EXPECT_NEAR(f.f_trunk[i].z(), expected.y(), 1e-9) << i;
+  }
+}
+
 // Against the simulator's contact forces (truth for tests only), from the servos' true torques
 // and the true joint state, the attitude from the ground truth: standing, and trotting.
 TEST(FootForce, FollowsTheSimulatorsContactForces) {

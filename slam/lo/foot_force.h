@@ -32,6 +32,14 @@ struct FootForceModel {
   double min_jacobian_det_m2 = 2e-4;
 };
 
+// How the estimate lines up the readings. The encoder's velocity is the difference of its last
+// two positions (sim/encoder_model.h), so it belongs half a sample back, and the difference of two
+// velocities (qdd) a whole sample back. `current` takes the newest torque, angle and velocity with
+// that qdd, at the newest reading's time (as first written); `centred` takes the previous
+// reading's torque and angle, the mean of the last two velocities and that qdd, all about the
+// previous reading's time, and dates the estimate there (one encoder period late).
+enum class ForceAlignment { kCurrent, kCentred };
+
 struct FootForces {
   int64_t t_ns = 0;
   std::array<Eigen::Vector3d, kNumLegs> f_trunk{};  // the ground's force on each foot, trunk frame (N)
@@ -40,19 +48,21 @@ struct FootForces {
 
 class FootForceEstimator {
  public:
-  FootForceEstimator(const kin::LegKinematics& kin, const FootForceModel& model = {});
+  FootForceEstimator(const kin::LegKinematics& kin, const FootForceModel& model = {},
+                     ForceAlignment alignment = ForceAlignment::kCurrent);
 
   // One encoder + torque reading; `g_trunk` is gravity in the trunk frame (m/s^2, e.g.
   // R_world_trunk^T (0, 0, -9.81) from the attitude filter). A reading without torque gives no
-  // estimate (every leg invalid).
+  // estimate (every leg invalid), as does the first one when centred. The estimate's t_ns says
+  // which instant it belongs to.
   FootForces Update(const JointState& js, const Eigen::Vector3d& g_trunk);
 
  private:
   const kin::LegKinematics& kin_;
   FootForceModel model_;
+  ForceAlignment alignment_;
   bool have_last_ = false;
-  int64_t last_t_ns_ = 0;
-  std::array<double, kNumJoints> last_velocity_{};  // the previous reading's velocities (rad/s)
+  JointState last_;  // the previous reading
 };
 
 }  // namespace viqu::lo
