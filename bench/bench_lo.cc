@@ -2,11 +2,15 @@
 // filter and the 18-state Kalman filter (issue 8 target: <= 0.05 ms per IMU sample). The robot
 // stands on the URDF's legs with noisy sensors; all four feet in stance (the most updates, and
 // all six stance pairs of the yaw-bias estimator). Argument 1: the estimator on (default), 0: off.
+// BM_FootForceSample adds the foot-force estimate from the servos' torques (issue 55: the whole
+// update, KF + forces + contact + slip, <= 0.05 ms per sample); the slip decision and the contact
+// are inside the first.
 #include <random>
 
 #include <benchmark/benchmark.h>
 
 #include "kinematics/leg_kinematics.h"
+#include "slam/lo/foot_force.h"
 #include "slam/lo/leg_odometry.h"
 
 namespace viqu {
@@ -46,6 +50,33 @@ void BM_LegOdometrySample(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_LegOdometrySample)->Arg(1)->Arg(0);
+
+void BM_FootForceSample(benchmark::State& state) {
+  const kin::LegKinematics kin = kin::LegKinematics::FromUrdfFile(std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.urdf");
+  lo::FootForceEstimator est(kin, lo::FootForceModel{}, lo::ForceAlignment::kCentred);
+  std::array<double, kNumJoints> q{};
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg leg = static_cast<Leg>(i);
+    const Eigen::Vector3d hip = kin.chain(leg).T_trunk_hip.translation();
+    kin.Inverse(leg, Eigen::Vector3d(hip.x(), hip.y(), -0.069), &q[2 * i], &q[2 * i + 1]);
+  }
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> n(0, 1);
+  int64_t t = 0;
+  for (auto _ : state) {
+    t += 5'000'000;
+    JointState js;
+    js.t_ns = t;
+    js.has_torque = true;
+    for (int j = 0; j < kNumJoints; ++j) {
+      js.position_rad[j] = q[j] + 0.001 * n(rng);
+      js.velocity_rad_s[j] = 0.4 * n(rng);
+      js.torque_nm[j] = 0.1 + 0.005 * n(rng);
+    }
+    benchmark::DoNotOptimize(est.Update(js, Eigen::Vector3d(0, 0, -9.81)));
+  }
+}
+BENCHMARK(BM_FootForceSample);
 
 }  // namespace
 }  // namespace viqu
