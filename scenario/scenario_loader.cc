@@ -181,7 +181,19 @@ void ReadSensors(YamlMapReader m, double physics_rate_hz, SensorsConfig* s) {
   joints.Number("noise_rad", &s->joints.noise_rad, NumberRange::NonNegative());
   joints.Number("resolution_rad", &s->joints.resolution_rad, NumberRange::Closed(0, 0.1));
   joints.Number("torque_noise_nm", &s->joints.torque_noise_nm, NumberRange::Closed(0, 10));
-  joints.Number("torque_resolution_nm", &s->joints.torque_resolution_nm, NumberRange::Closed(0, 1));
+  const bool resolution_given =
+      joints.Number("torque_resolution_nm", &s->joints.torque_resolution_nm, NumberRange::Closed(0, 1));
+  // torque_quantum_nm: the same setting under the design's name (the run folder's contract names
+  // it so); torque_resolution_nm is the encoder-style name (resolution_rad). One of them.
+  double quantum = 0;
+  if (joints.Number("torque_quantum_nm", &quantum, NumberRange::Closed(0, 1))) {
+    if (resolution_given) {
+      throw InputError(joints.Where("torque_quantum_nm") +
+                       ": sensors.joints.torque_quantum_nm and torque_resolution_nm are one setting (the torque "
+                       "reading's quantisation step, N m): give one of them");
+    }
+    s->joints.torque_resolution_nm = quantum;
+  }
   joints.Number("torque_bias_nm", &s->joints.torque_bias_nm, NumberRange::Closed(0, 10));
   joints.Number("torque_delay_s", &s->joints.torque_delay_s, NumberRange::Closed(0, 1));
   joints.Choice("torque_sampling", &s->joints.torque_sampling, {"instant", "mean"});

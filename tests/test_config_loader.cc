@@ -138,6 +138,19 @@ TEST_F(ConfigLoaderTest, DesignSchemaExampleLoads) {
   EXPECT_EQ(s.slam.dynamic.window_n, 10);
 }
 
+// The torque reading's quantisation step under the design's name (torque_quantum_nm) or the
+// encoder-style one (torque_resolution_nm): one setting, given once.
+TEST_F(ConfigLoaderTest, TorqueQuantumIsTheResolutionsOtherName) {
+  const std::string base = std::string(kMinimal) + "sensors:\n  joints: {";
+  EXPECT_EQ(LoadScenario(Write("scen.yaml", base + "torque_quantum_nm: 0.004}\n")).sensors.joints.torque_resolution_nm,
+            0.004);
+  EXPECT_EQ(LoadScenario(Write("scen.yaml", base + "torque_resolution_nm: 0.003}\n")).sensors.joints.torque_resolution_nm,
+            0.003);
+  const std::string msg = ErrorOf(base + "torque_resolution_nm: 0.003, torque_quantum_nm: 0.004}\n");
+  EXPECT_EQ(msg.rfind(ScenPath() + ":", 0), 0u) << msg;
+  EXPECT_NE(msg.find("torque_quantum_nm and torque_resolution_nm are one setting"), std::string::npos) << msg;
+}
+
 TEST_F(ConfigLoaderTest, UnknownKeyNamesFileLineAndColumn) {
   const std::string msg = ErrorOf(std::string(kMinimal) + "  gati: {duty: 0.5}\n");
   EXPECT_EQ(msg.rfind(ScenPath() + ":5:3: unknown key 'robot.gati' (expected one of: model, ", 0), 0u) << msg;
