@@ -14,6 +14,7 @@ void FootTruth::Step(int64_t t_ns, double dt_s, const std::array<bool, kNumLegs>
     started_ = true;
     for (int i = 0; i < kNumLegs; ++i) {
       contact_[i] = raw_contact[i];
+      travel_[i].setZero();
       if (contact_[i]) open_[i] = TrueStance{i, t_ns, t_ns, 0.0, -1, 0.0, true, false};
     }
   }

@@ -33,7 +33,13 @@ struct TrueStance {
 class FootTruth {
  public:
   // slip_travel_m, debounce_s: the scenario's scoring settings.
-  FootTruth(double slip_travel_m, double debounce_s) : slip_travel_m_(slip_travel_m), debounce_s_(debounce_s) {}
+  FootTruth(double slip_travel_m, double debounce_s) : slip_travel_m_(slip_travel_m), debounce_s_(debounce_s) {
+    // Eigen's vectors start uninitialised: every accumulator starts at zero.
+    for (int i = 0; i < kNumLegs; ++i) {
+      travel_[i].setZero();
+      pending_[i].setZero();
+    }
+  }
 
   // After one physics step of dt_s ending at t_ns: each foot's raw contact and sole velocity
   // (world). The first call (dt_s 0 at the run's start) takes the feet down then as in stance.
