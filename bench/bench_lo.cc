@@ -16,6 +16,17 @@
 namespace viqu {
 namespace {
 
+// The joint angles of the robot standing with each foot 69 mm below its hip.
+std::array<double, kNumJoints> StandingAngles(const kin::LegKinematics& kin) {
+  std::array<double, kNumJoints> q{};
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg leg = static_cast<Leg>(i);
+    const Eigen::Vector3d hip = kin.chain(leg).T_trunk_hip.translation();
+    kin.Inverse(leg, Eigen::Vector3d(hip.x(), hip.y(), -0.069), &q[2 * i], &q[2 * i + 1]);
+  }
+  return q;
+}
+
 void BM_LegOdometrySample(benchmark::State& state) {
   const kin::LegKinematics kin = kin::LegKinematics::FromUrdfFile(std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.urdf");
   slam::LegOdometrySettings settings;
@@ -23,12 +34,7 @@ void BM_LegOdometrySample(benchmark::State& state) {
   if (state.range(0) == 0) settings.yaw_bias_initial_std = 0;
   lo::LegOdometry lo(settings, kin);
   lo.Start(0, Eigen::Isometry3d(Eigen::Translation3d(0, 0, 0.075)));
-  std::array<double, kNumJoints> q{};
-  for (int i = 0; i < kNumLegs; ++i) {
-    const Leg leg = static_cast<Leg>(i);
-    const Eigen::Vector3d hip = kin.chain(leg).T_trunk_hip.translation();
-    kin.Inverse(leg, Eigen::Vector3d(hip.x(), hip.y(), -0.069), &q[2 * i], &q[2 * i + 1]);
-  }
+  const std::array<double, kNumJoints> q = StandingAngles(kin);
   std::mt19937_64 rng(1);
   std::normal_distribution<double> n(0, 1);
   int64_t t = 0;
@@ -54,12 +60,7 @@ BENCHMARK(BM_LegOdometrySample)->Arg(1)->Arg(0);
 void BM_FootForceSample(benchmark::State& state) {
   const kin::LegKinematics kin = kin::LegKinematics::FromUrdfFile(std::string(VIQU_SOURCE_DIR) + "/models/rat/rat.urdf");
   lo::FootForceEstimator est(kin, lo::FootForceModel{}, lo::ForceAlignment::kCentred);
-  std::array<double, kNumJoints> q{};
-  for (int i = 0; i < kNumLegs; ++i) {
-    const Leg leg = static_cast<Leg>(i);
-    const Eigen::Vector3d hip = kin.chain(leg).T_trunk_hip.translation();
-    kin.Inverse(leg, Eigen::Vector3d(hip.x(), hip.y(), -0.069), &q[2 * i], &q[2 * i + 1]);
-  }
+  const std::array<double, kNumJoints> q = StandingAngles(kin);
   std::mt19937_64 rng(1);
   std::normal_distribution<double> n(0, 1);
   int64_t t = 0;

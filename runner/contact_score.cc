@@ -4,19 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "runner/run_metrics.h"
+
 namespace viqu::runner {
-namespace {
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const size_t n = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + n, v.end());
-  if (v.size() % 2) return v[n];
-  const double hi = v[n];
-  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + n));
-}
-
-}  // namespace
 
 void ContactScorer::Add(int64_t t_ns, const std::array<bool, kNumLegs>& estimated, const std::array<bool, kNumLegs>& truth) {
   for (int i = 0; i < kNumLegs; ++i) {

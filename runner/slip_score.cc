@@ -4,20 +4,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "runner/run_metrics.h"
+
 namespace viqu::runner {
 namespace {
 
 bool EarlierStart(const SlipEvent& a, const SlipEvent& b) {
   return a.start_ns < b.start_ns || (a.start_ns == b.start_ns && a.leg < b.leg);
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const size_t n = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + n, v.end());
-  if (v.size() % 2) return v[n];
-  const double hi = v[n];
-  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + n));
 }
 
 }  // namespace

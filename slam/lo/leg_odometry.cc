@@ -75,7 +75,7 @@ void LegOdometry::Start(int64_t t_ns, const Eigen::Isometry3d& T_w_body) {
   feet_placed_ = false;
   window_.clear();
   roll_w_.fill(Eigen::Vector3d::Zero());
-  for (FootStatus& f : feet_) f = FootStatus{true, false, 0, t_ns, 0, false, Eigen::Vector3d::Zero()};
+  for (FootStatus& f : feet_) f = FootStatus{true, false, 0, t_ns, 0, false};
   settled_at_w_.fill(std::nullopt);
   yaw_bias_.Reset(t_ns);
   gravity_tilt_.Reset();
@@ -294,14 +294,14 @@ void LegOdometry::AddJoints(const JointState& js) {
   const int64_t travel_from_ns = std::llround(settings_.slip_travel_from_s * 1e9);
   for (int i = 0; i < kNumLegs; ++i) {
     FootStatus& f = feet_[i];
-    f.contact_ref_w = travel_w_ + contact_w[i];
     if (!f.contact || js.t_ns - f.touchdown_ns < travel_from_ns) {
       settled_at_w_[i].reset();
       f.travel_m = 0;
       if (!f.contact) f.slipped = false;
       continue;
     }
-    const Eigen::Vector3d& at_w = f.contact_ref_w;
+    // The contact point by the body's predicted travel (any origin: only its changes count).
+    const Eigen::Vector3d at_w = travel_w_ + contact_w[i];
     if (!settled_at_w_[i]) {
       settled_at_w_[i] = at_w;
       f.slipped = false;

@@ -39,9 +39,6 @@ struct FootStatus {
   // whether it has exceeded the threshold in this stance (held until lift-off).
   double travel_m = 0;
   bool slipped = false;
-  // Its contact point by the body's predicted travel: the filter's velocity integrated plus the
-  // contact point relative to the body (m, world; any origin: only its changes in a stance count).
-  Eigen::Vector3d contact_ref_w = Eigen::Vector3d::Zero();
 };
 
 class LegOdometry {
